@@ -1,0 +1,55 @@
+# Plenopath Studio — the two commands that matter: `make run` and `make test`.
+BUILD_DIR ?= build
+BUILD_TYPE ?= RelWithDebInfo
+JOBS ?= $(shell nproc)
+SANITIZE ?= $(PLENOPATH_SANITIZE)
+ifneq ($(SANITIZE),)
+  BUILD_DIR := build-sanitize
+  BUILD_TYPE := Debug
+endif
+CMAKE_FLAGS ?=
+# GUI and VTK tests need a display: use the real one if there is one, otherwise a virtual X server.
+ifeq ($(DISPLAY),)
+  WITH_DISPLAY := xvfb-run -a -s "-screen 0 1600x1000x24"
+else
+  WITH_DISPLAY :=
+endif
+
+.PHONY: all deps configure build run test bench format fuzz clean screenshot
+
+all: build
+
+deps:
+	@bash cmake/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DPLENOPATH_SANITIZE=$(SANITIZE) $(CMAKE_FLAGS) > $(BUILD_DIR).configure.log 2>&1 \
+	  || (cat $(BUILD_DIR).configure.log; exit 1)
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+run: build
+	@bash app/run-sample.sh $(BUILD_DIR)
+
+test: build
+	@cd $(BUILD_DIR) && $(WITH_DISPLAY) ctest --output-on-failure -j $(JOBS) --timeout 900
+
+bench: build
+	@bash tests/bench/run-all.sh $(BUILD_DIR)
+
+fuzz: CMAKE_FLAGS += -DPLENOPATH_BUILD_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPLENOPATH_BUILD_STUDIO=OFF
+fuzz: BUILD_DIR := build-fuzz
+fuzz: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+	@bash tests/fuzz/run-long.sh $(BUILD_DIR)
+
+screenshot: build
+	@bash app/take-screenshot.sh $(BUILD_DIR) resources/screenshots/studio.png
+
+format:
+	@find app widgets model processing rig tests -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf build build-sanitize build-fuzz build*.configure.log

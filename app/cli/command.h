@@ -1,0 +1,23 @@
+#pragma once
+// Every `plenopath` subcommand registers itself with add_*_command() and returns what main() runs when
+// that subcommand was chosen. Conventions: long options, --json for machine-readable output, exit codes
+// 0 ok / 1 failed / 2 bad usage, errors on stderr naming the file.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <vector>
+
+namespace plenopath::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitUsage = 2;
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+// One line per subcommand; keep alphabetical. Each lives in command_<name>.cpp.
+Command add_info_command(CLI::App& parent);
+
+}  // namespace plenopath::cli

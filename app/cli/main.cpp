@@ -1,0 +1,41 @@
+// `plenopath`: the command line. No Qt Widgets here; everything it runs lives in processing/.
+#include <iostream>
+
+#include "app/cli/command.h"
+#include "model/error.h"
+
+int main(int argc, char** argv) {
+  using namespace plenopath::cli;
+  CLI::App app{"Plenopath Studio command line: plenoptic path recovery, visibility, sampling and export"};
+  app.set_version_flag("--version", std::string("plenopath ") + PLENOPATH_VERSION);
+  app.require_subcommand(0, 1);
+
+  std::vector<Command> commands = {
+      add_info_command(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+  for (const Command& c : commands) {
+    if (!c.app->parsed()) continue;
+    try {
+      return c.run();
+    } catch (const plenopath::Error& e) {
+      std::cerr << "plenopath " << c.app->get_name() << ": error: " << e.what() << "\n";
+      return kExitFailed;
+    } catch (const std::exception& e) {
+      std::cerr << "plenopath " << c.app->get_name() << ": internal error: " << e.what() << "\n";
+      return kExitFailed;
+    }
+  }
+  std::cout << app.help();
+  return kExitUsage;
+}

@@ -1,0 +1,16 @@
+#pragma once
+// Writing files so that a crash never leaves a half-written document behind.
+#include <string>
+
+namespace plenopath {
+
+// Writes contents to a temporary file in the same folder, flushes it to disk and renames it over `file`.
+// With keep_backup, the previous `file` (if any) is kept as `file + ".bak"`. Throws Error naming the file.
+void write_file_atomically(const std::string& file, const std::string& contents, bool keep_backup);
+
+// `absolute` expressed relative to `base_dir` (generic separators); empty stays empty.
+std::string path_relative_to(const std::string& absolute, const std::string& base_dir);
+// `stored` resolved against `base_dir` unless it is already absolute; empty stays empty.
+std::string path_resolved_against(const std::string& stored, const std::string& base_dir);
+
+}  // namespace plenopath

@@ -1,0 +1,39 @@
+#pragma once
+// What was shot: a folder of equirectangular frames or a video, optional depth maps and GPS track.
+#include <string>
+#include <vector>
+
+namespace plenopath {
+
+enum class CaptureKind { kNone, kImageFolder, kVideo };
+const char* to_string(CaptureKind kind);
+CaptureKind capture_kind_from_string(const std::string& text);  // throws Error on an unknown name
+
+struct GpsSample {
+  double time_s = 0.0;  // seconds since the track's epoch (UTC)
+  double latitude_deg = 0.0;
+  double longitude_deg = 0.0;
+  double altitude_m = 0.0;
+};
+bool operator==(const GpsSample& l, const GpsSample& r);
+
+struct Capture {
+  CaptureKind kind = CaptureKind::kNone;
+  std::string source;  // folder or video file; absolute in memory, relative to the project on disk
+  int frame_count = 0;
+  int width = 0;
+  int height = 0;
+  double frame_rate = 30.0;               // frames per second, for playback and GPS matching
+  int first_frame = 0;                    // video: first decoded frame number
+  int stride = 1;                         // video/folder: keep every stride-th frame
+  std::vector<std::string> frame_names;   // image folder: file names relative to source, in capture order
+  std::string depth_folder;               // optional; depth maps matched to frames by name
+  std::vector<GpsSample> gps_track;       // optional
+  double gps_time_offset_s = 0.0;         // capture time of frame 0 in the GPS track's clock
+  double camera_height_m = 0.0;           // 0 = unknown
+
+  bool empty() const { return kind == CaptureKind::kNone; }
+};
+bool operator==(const Capture& l, const Capture& r);
+
+}  // namespace plenopath
