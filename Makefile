@@ -8,6 +8,9 @@ ifneq ($(SANITIZE),)
   BUILD_TYPE := Debug
 endif
 CMAKE_FLAGS ?=
+# ccache hits across clones: hash paths relative to the source tree, not the absolute folder.
+export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
 # GUI and VTK tests need a display: use the real one if there is one, otherwise a virtual X server.
 ifeq ($(DISPLAY),)
   WITH_DISPLAY := xvfb-run -a -s "-screen 0 1600x1000x24"
