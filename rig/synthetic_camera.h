@@ -1,0 +1,168 @@
+#pragma once
+// The synthetic surround camera: renders RGB + depth equirectangular panoramas of a FloorPlan extruded to
+// 2.5-D (walls and pillars to the ceiling, furniture as low boxes, a floor and a ceiling), with exact depth.
+// It is the project's test bench: every pose it renders is ground truth.
+//
+// Geometry (all metres, plan frame X right, Y up, Z up):
+// - walls: every occluder segment (and every segment on a columns layer) is a double-sided vertical
+//   rectangle from z = 0 to wall_height;
+// - furniture: every closed outline on a furniture layer is a prism from z = 0 to its layer's height with a
+//   flat top; its sides are its outline's edges;
+// - floor z = 0 and ceiling z = wall_height cover the plan's extents grown by `floor_margin`; rays that
+//   leave that rectangle without hitting anything have no hit (depth 0, sky colour);
+// - people (RenderOptions::people) are vertical cylinders with a flat top.
+// The panorama follows rig/spherical.h: centre column = heading, azimuth grows clockwise seen from above.
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "model/camera_path.h"
+#include "model/floor_plan.h"
+
+namespace plenopath {
+
+struct SceneOptions {
+  double wall_height = 2.8;    // metres; also the ceiling height
+  double camera_height = 1.6;  // metres above the floor (the nodal point of the rig)
+  // Layers to use; empty = every visible layer of the plan.
+  std::vector<std::string> layers;
+  // Closed outlines (and segments) on these layers become full-height pillars. Empty = guess: layer names
+  // containing COL or PILLAR (any case).
+  std::vector<std::string> column_layers;
+  // Closed outlines on these layers become furniture boxes. Empty = guess: names containing FURN, DESK,
+  // TABLE or EQUIP (any case).
+  std::vector<std::string> furniture_layers;
+  double furniture_height = 0.75;                      // metres, for furniture layers not listed below
+  std::map<std::string, double> furniture_layer_heights;  // per-layer override, metres
+  double floor_margin = 1.0;   // metres the floor and ceiling extend beyond the plan's extents
+  std::uint32_t texture_seed = 1;  // every surface's texture is a deterministic function of this and its id
+  int texture_size = 1024;     // texels per side of each procedural texture (power of two)
+  double texels_per_metre = 256.0;
+
+  // Empty when the options make sense; otherwise says what is wrong.
+  std::string check() const;
+};
+
+// The kind of surface a ray hit (also used for shading and by tests).
+enum class SurfaceKind : std::uint8_t { kNone = 0, kWall, kPillar, kFurnitureSide, kFurnitureTop, kFloor, kCeiling,
+                                        kPerson };
+
+// One vertical face of the scene: a plan segment extruded from z = 0 to `top`.
+struct SceneFace {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  double top = 0.0;            // metres
+  SurfaceKind kind = SurfaceKind::kWall;
+  int footprint = -1;          // index into SyntheticScene::footprints for furniture sides, -1 otherwise
+  int material = 0;            // which procedural texture
+  double u_offset = 0.0;       // texture offset along the face, metres (per-surface seed)
+  cv::Vec3f tint{1, 1, 1};     // per-surface colour multiplier (BGR)
+  int poster_begin = 0, poster_end = 0;  // posters on this face: SyntheticScene::posters[begin, end)
+};
+
+// A closed outline with a flat top (furniture).
+struct SceneFootprint {
+  std::vector<Eigen::Vector2d> points;
+  double top = 0.0;
+  int material = 0;
+  cv::Vec3f tint{1, 1, 1};
+};
+
+// A framed poster on a wall face: a rectangle in the face's (u along a->b, z) coordinates.
+struct ScenePoster {
+  double u0 = 0, u1 = 0, z0 = 0, z1 = 0;  // metres
+  int image = 0;                          // index into the scene's poster images
+};
+
+struct SceneTextures;  // procedural texture pyramids (internal)
+struct SceneGrid;      // uniform grid over faces for 2-D ray casting (internal)
+
+class SyntheticScene {
+ public:
+  SceneOptions options;
+  std::vector<SceneFace> faces;
+  std::vector<SceneFootprint> footprints;
+  std::vector<ScenePoster> posters;
+  Eigen::Vector2d floor_min = Eigen::Vector2d::Zero(), floor_max = Eigen::Vector2d::Zero();  // floor rectangle
+  std::shared_ptr<const SceneTextures> textures;
+  std::shared_ptr<const SceneGrid> grid;
+};
+
+// Throws Error when the options are bad or the plan has nothing to render.
+SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& options = {});
+
+struct RenderOptions {
+  int width = 2048;   // equirectangular width, pixels (any size >= 8)
+  int height = 1024;  // equirectangular height, pixels
+  bool depth = true;  // also fill RenderedPanorama::depth
+  int threads = 0;    // 0 = all cores
+  // Realism switches, all off by default.
+  double noise_sigma = 0.0;        // Gaussian sensor noise, in 8-bit grey levels; seeded by noise_seed and frame
+  std::uint32_t noise_seed = 7;
+  double exposure_drift = 0.0;     // relative amplitude of a slow gain drift over frames (e.g. 0.15)
+  double exposure_period_frames = 240.0;
+  int people = 0;                  // moving people (textured cylinders)
+  std::uint32_t people_seed = 11;
+  double frame_rate = 30.0;        // frames per second: a frame's time is index / frame_rate (people move)
+  int jpeg_quality = 92;           // used by writers of the frames (rig/ itself encodes nothing)
+
+  std::string check() const;
+};
+
+struct RenderedPanorama {
+  cv::Mat rgb;    // CV_8UC3, BGR
+  cv::Mat depth;  // CV_32F, metres along the ray, 0 = no hit (empty when RenderOptions::depth is false)
+};
+
+// Renders the panorama seen from (pose.x, pose.y, camera_height) with heading pose.heading. The result is a
+// deterministic function of the scene, the pose (including pose.index, which times people, noise and drift)
+// and the options; thread count does not change it.
+RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options);
+
+// One ray, for rigs and tests: origin and direction in the plan frame (direction need not be unit).
+struct RayHit {
+  double distance = 0.0;  // metres along the unit ray, 0 = no hit
+  SurfaceKind kind = SurfaceKind::kNone;
+  cv::Vec3b bgr{0, 0, 0};
+};
+// Casts one ray; `frame_index` places the people (as for a pose with that index).
+RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                 const RenderOptions& options, int frame_index = 0);
+
+// Where the people are at a frame (centre, radius, height), for tests and overlays.
+struct PersonPose {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double radius = 0.25;
+  double height = 1.75;
+  int id = 0;
+};
+std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options, int frame_index);
+
+// ---- automatic walk
+struct AutoWalkOptions {
+  double step = 0.08;            // metres between frames on average
+  double step_wobble = 0.25;     // relative variation of the step (a hand-pushed trolley)
+  double heading_wobble_deg = 2.0;  // amplitude of the heading wobble around the path tangent
+  double clearance = 0.45;       // metres kept from walls and furniture
+  double room_spacing = 2.5;     // metres between waypoints (about one per room)
+  int max_frames = 0;            // 0 = the whole walk
+  std::uint32_t seed = 3;
+  std::string frame_pattern = "frames/%06d.jpg";  // PathFrame::file of each frame (empty = none)
+  SceneOptions scene;            // which layers block the trolley (walls, pillars, furniture)
+
+  std::string check() const;
+};
+// A smooth walk visiting every reachable room of the plan through its doorways. Throws Error when the plan
+// has no free space big enough for the trolley.
+CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options = {});
+
+// ---- the sample plan
+// The office sample (about 25 m x 15 m: rooms, a corridor, doorways with swing arcs, pillars, furniture,
+// labels), built in code so tests need no DXF importer. See rig/office_sample.h for its CAD primitives.
+FloorPlan make_office_sample_plan();
+
+}  // namespace plenopath
