@@ -1,0 +1,313 @@
+#include "processing/egomotion/ring_heading.h"
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "model/error.h"
+#include "rig/spherical.h"
+
+namespace plenopath {
+namespace {
+constexpr double kPi = M_PI;
+using Complex = std::complex<double>;
+
+// Full complex spectrum of a real sequence, exact length (cv::dft handles any length).
+std::vector<Complex> spectrum(const std::vector<double>& x) {
+  cv::Mat in(1, static_cast<int>(x.size()), CV_64F, const_cast<double*>(x.data()));
+  cv::Mat out;
+  cv::dft(in, out, cv::DFT_COMPLEX_OUTPUT);
+  std::vector<Complex> s(x.size());
+  for (size_t k = 0; k < x.size(); ++k) {
+    const cv::Vec2d v = out.at<cv::Vec2d>(0, static_cast<int>(k));
+    s[k] = {v[0], v[1]};
+  }
+  return s;
+}
+
+// Signed frequency of DFT bin k for length n.
+double signed_frequency(int k, int n) { return k <= n / 2 ? k : k - n; }
+
+struct ShiftEstimate {
+  double shift = 0.0;
+  double peak = 0.0;
+};
+
+// The whitened, tapered cross spectrum and its band-limited correlation r(d) = sum T_k Re(C_k e^{i w_k d}).
+ShiftEstimate correlate(const std::vector<double>& a, const std::vector<double>& b, double center,
+                        double max_shift, double max_frequency_fraction) {
+  const int n = static_cast<int>(a.size());
+  const std::vector<Complex> sa = spectrum(a), sb = spectrum(b);
+  std::vector<Complex> cross(n, 0.0);
+  const double cutoff = std::max(2.0, max_frequency_fraction * n / 2.0);
+  double taper_sum = 0.0;
+  double max_power = 0.0;
+  for (int k = 0; k < n; ++k) max_power = std::max(max_power, std::abs(sa[k]) * std::abs(sb[k]));
+  const double eps = 1e-9 * max_power + 1e-300;
+  for (int k = 1; k < n; ++k) {
+    const double f = std::abs(signed_frequency(k, n));
+    if (n % 2 == 0 && k == n / 2) continue;  // the Nyquist bin has no sign
+    if (f >= cutoff) continue;
+    const double taper = 0.5 * (1.0 + std::cos(kPi * f / cutoff));
+    const Complex c = std::conj(sa[k]) * sb[k];
+    cross[k] = taper * c / (std::abs(c) + eps);
+    taper_sum += taper;
+  }
+  if (taper_sum <= 0.0) return {};
+  for (auto& c : cross) c /= taper_sum;
+
+  auto value = [&](double d, double* first, double* second) {
+    double v = 0.0, d1 = 0.0, d2 = 0.0;
+    for (int k = 1; k < n; ++k) {
+      if (cross[k] == 0.0) continue;
+      const double w = 2.0 * kPi * signed_frequency(k, n) / n;
+      const Complex e = cross[k] * std::polar(1.0, w * d);
+      v += e.real();
+      d1 -= w * e.imag();
+      d2 -= w * w * e.real();
+    }
+    if (first) *first = d1;
+    if (second) *second = d2;
+    return v;
+  };
+
+  // Integer peak within the search window (inverse DFT gives r at every integer shift).
+  cv::Mat spec(1, n, CV_64FC2);
+  for (int k = 0; k < n; ++k) spec.at<cv::Vec2d>(0, k) = {cross[k].real(), cross[k].imag()};
+  cv::Mat corr;
+  cv::dft(spec, corr, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT);
+  const int lo = static_cast<int>(std::ceil(center - max_shift));
+  const int hi = static_cast<int>(std::floor(center + max_shift));
+  double best = -1e300;
+  int best_d = 0;
+  for (int d = lo; d <= hi; ++d) {
+    const int k = ((d % n) + n) % n;
+    const double v = corr.at<double>(0, k);
+    if (v > best) {
+      best = v;
+      best_d = d;
+    }
+  }
+  // Newton on the exact interpolation, kept within one pixel of the integer peak.
+  double d = best_d;
+  for (int it = 0; it < 12; ++it) {
+    double g = 0.0, h = 0.0;
+    value(d, &g, &h);
+    double step;
+    if (h < 0.0) {
+      step = -g / h;
+    } else {
+      step = g > 0 ? 0.25 : -0.25;
+    }
+    step = std::clamp(step, -0.5, 0.5);
+    d = std::clamp(d + step, best_d - 1.0, best_d + 1.0);
+    if (std::abs(step) < 1e-7) break;
+  }
+  return {d, value(d, nullptr, nullptr)};
+}
+
+double weighted_mean(const std::vector<double>& x, const std::vector<double>& w) {
+  double s = 0, sw = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    s += x[i] * w[i];
+    sw += w[i];
+  }
+  return sw > 0 ? s / sw : 0.0;
+}
+
+std::vector<double> apply_window(const std::vector<double>& x, const std::vector<double>& w) {
+  const double m = weighted_mean(x, w);
+  std::vector<double> y(x.size());
+  for (size_t i = 0; i < x.size(); ++i) y[i] = (x[i] - m) * w[i];
+  return y;
+}
+}  // namespace
+
+std::string RingOptions::check() const {
+  std::ostringstream o;
+  if (!(min_elevation_deg >= -90 && max_elevation_deg <= 90 && min_elevation_deg < max_elevation_deg))
+    o << "ring band must satisfy -90 <= min_elevation_deg < max_elevation_deg <= 90; ";
+  if (!(axis_floor >= 0.0 && axis_floor <= 1.0)) o << "axis_floor must be in [0, 1]; ";
+  if (!(max_frequency_fraction > 0.0 && max_frequency_fraction <= 1.0))
+    o << "max_frequency_fraction must be in (0, 1]; ";
+  if (!(max_turn_deg_per_frame > 0.0 && max_turn_deg_per_frame < 180.0))
+    o << "max_turn_deg_per_frame must be in (0, 180); ";
+  if (frame_offsets.empty() || frame_offsets.front() != 1) o << "frame_offsets must start with 1; ";
+  for (int f : frame_offsets)
+    if (f < 1) o << "frame_offsets must be positive; ";
+  if (!(min_peak >= 0.0 && min_peak < 1.0)) o << "min_peak must be in [0, 1); ";
+  return o.str();
+}
+
+std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options) {
+  if (equirect.empty()) throw Error("ring image: empty frame");
+  cv::Mat gray;
+  if (equirect.channels() == 3) {
+    cv::cvtColor(equirect, gray, cv::COLOR_BGR2GRAY);
+  } else if (equirect.channels() == 1) {
+    gray = equirect;
+  } else {
+    throw Error("ring image: expected a 1- or 3-channel frame");
+  }
+  cv::Mat gray32;
+  gray.convertTo(gray32, CV_32F);
+  const int w = gray32.cols, h = gray32.rows;
+  std::vector<double> ring(w, 0.0);
+  double total = 0.0;
+  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
+  for (int v = 0; v < h; ++v) {
+    // Exact angle the row subtends inside the band, weighted by cos(elevation): the row's solid angle.
+    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
+    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
+    if (top <= bottom) continue;
+    const double weight = std::sin(top) - std::sin(bottom);
+    const float* row = gray32.ptr<float>(v);
+    for (int u = 0; u < w; ++u) ring[u] += weight * row[u];
+    total += weight;
+  }
+  if (total <= 0.0) throw Error("ring image: the latitude band covers no row");
+  for (double& r : ring) r /= total;
+  return ring;
+}
+
+std::vector<double> axis_window(int width, double axis_floor, double shift_px) {
+  std::vector<double> w(width);
+  for (int u = 0; u < width; ++u) {
+    const double azimuth = (u + 0.5 - shift_px) / width * 2.0 * kPi - kPi;
+    const double c = std::cos(azimuth);
+    w[u] = axis_floor + (1.0 - axis_floor) * c * c;
+  }
+  return w;
+}
+
+RingShift circular_phase_correlation(const std::vector<double>& a, const std::vector<double>& b,
+                                     double center_px, double max_shift_px, const std::vector<double>* window_a,
+                                     double max_frequency_fraction) {
+  if (a.size() != b.size() || a.size() < 8) throw Error("phase correlation: rings differ in length or are too short");
+  const int n = static_cast<int>(a.size());
+  max_shift_px = std::min(max_shift_px, n / 2.0);
+  std::vector<double> ones(n, 1.0);
+  const std::vector<double>& wa = window_a ? *window_a : ones;
+  if (static_cast<int>(wa.size()) != n) throw Error("phase correlation: window length differs from the ring");
+  const std::vector<double> aw = apply_window(a, wa);
+  ShiftEstimate e = correlate(aw, apply_window(b, wa), center_px, max_shift_px, max_frequency_fraction);
+  if (window_a) {
+    // The window of b must sit where a's window went: resample it through the shift, re-register.
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<double> wb(n);
+      for (int u = 0; u < n; ++u) {
+        // Linear interpolation of the window at u - shift (windows are smooth).
+        double x = u - e.shift;
+        x = std::fmod(x, static_cast<double>(n));
+        if (x < 0) x += n;
+        const int i0 = static_cast<int>(std::floor(x)) % n;
+        const double t = x - std::floor(x);
+        wb[u] = (1 - t) * wa[i0] + t * wa[(i0 + 1) % n];
+      }
+      e = correlate(aw, apply_window(b, wb), e.shift, 1.5, max_frequency_fraction);
+    }
+  }
+  RingShift r;
+  r.shift_px = e.shift;
+  r.peak = e.peak;
+  r.valid = e.peak > 0.0;
+  return r;
+}
+
+RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options) {
+  const std::string problem = options.check();
+  if (!problem.empty()) throw Error("ring options: " + problem);
+  RingHeadings out;
+  const int n = static_cast<int>(rings.size());
+  out.headings.assign(n, 0.0);
+  out.step_peak.assign(n, 0.0);
+  out.failed.assign(n, false);
+  if (n == 0) return out;
+  const int w = static_cast<int>(rings[0].size());
+  for (const auto& r : rings)
+    if (static_cast<int>(r.size()) != w) throw Error("ring headings: rings differ in length");
+  const double px_per_rad = w / (2.0 * kPi);
+  const double max_step_px = options.max_turn_deg_per_frame * kPi / 180.0 * px_per_rad;
+  const std::vector<double> window = axis_window(w, options.axis_floor);
+
+  struct Pair {
+    int i, j;  // j > i
+    double delta;
+    double weight;
+  };
+  std::vector<Pair> pairs;
+  // Chain first (consecutive), then longer offsets centred on the chained prediction.
+  std::vector<double> chained(n, 0.0);
+  for (int j = 1; j < n; ++j) {
+    const RingShift s = circular_phase_correlation(rings[j - 1], rings[j], 0.0, max_step_px, &window,
+                                                   options.max_frequency_fraction);
+    out.step_peak[j] = s.peak;
+    if (s.valid && s.peak >= options.min_peak) {
+      chained[j] = chained[j - 1] + s.shift_px / px_per_rad;
+      pairs.push_back({j - 1, j, s.shift_px / px_per_rad, s.peak});
+    } else {
+      chained[j] = chained[j - 1];
+      out.failed[j] = true;
+    }
+  }
+  for (int offset : options.frame_offsets) {
+    if (offset == 1) continue;
+    for (int j = offset; j < n; ++j) {
+      const int i = j - offset;
+      const double predicted = (chained[j] - chained[i]) * px_per_rad;
+      const double tolerance = std::min(max_step_px, std::max(4.0, 0.25 * max_step_px * offset));
+      const RingShift s = circular_phase_correlation(rings[i], rings[j], predicted, tolerance, &window,
+                                                     options.max_frequency_fraction);
+      if (!s.valid || s.peak < options.min_peak) continue;
+      pairs.push_back({i, j, s.shift_px / px_per_rad, s.peak});
+      out.failed[j] = false;
+    }
+  }
+  out.registrations = static_cast<int>(pairs.size());
+  out.headings = chained;
+  if (n == 1 || pairs.empty()) return out;
+
+  // Joint robust least squares: theta_j - theta_i = delta, theta_0 = 0 (the gauge).
+  const double huber = 0.3 * kPi / 180.0;
+  std::vector<double> robust(pairs.size(), 1.0);
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n - 1);
+    auto add = [&](int r, int c, double v) {
+      if (r > 0 && c > 0) triplets.emplace_back(r - 1, c - 1, v);
+    };
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      const Pair& p = pairs[k];
+      const double wgt = p.weight * robust[k];
+      add(p.i, p.i, wgt);
+      add(p.j, p.j, wgt);
+      add(p.i, p.j, -wgt);
+      add(p.j, p.i, -wgt);
+      if (p.j > 0) rhs[p.j - 1] += wgt * p.delta;
+      if (p.i > 0) rhs[p.i - 1] -= wgt * p.delta;
+    }
+    // A weak prior on consecutive equality keeps frames without any registration attached.
+    for (int j = 1; j < n; ++j) {
+      add(j - 1, j - 1, 1e-6);
+      add(j, j, 1e-6);
+      add(j - 1, j, -1e-6);
+      add(j, j - 1, -1e-6);
+    }
+    Eigen::SparseMatrix<double> a(n - 1, n - 1);
+    a.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+    if (solver.info() != Eigen::Success) break;
+    const Eigen::VectorXd theta = solver.solve(rhs);
+    for (int j = 1; j < n; ++j) out.headings[j] = theta[j - 1];
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      const double r = std::abs(out.headings[pairs[k].j] - out.headings[pairs[k].i] - pairs[k].delta);
+      robust[k] = r <= huber ? 1.0 : huber / r;
+    }
+  }
+  return out;
+}
+
+}  // namespace plenopath

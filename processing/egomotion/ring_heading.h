@@ -1,0 +1,62 @@
+#pragma once
+// Step 1 of the egomotion (seed paper §4.1): coarse headings from ring images. A ring image is the column
+// mean of an equirectangular frame over a latitude band, each row weighted by the angle it subtends
+// (cos elevation). A pure rotation about the vertical is an exact circular shift of the ring, so circular
+// 1-D phase correlation with a sub-pixel peak gives the heading change: shift (pixels) x 2pi / w.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace plenopath {
+
+struct RingOptions {
+  double min_elevation_deg = -35.0;  // latitude band averaged into the ring (walls, not floor or ceiling)
+  double max_elevation_deg = 35.0;
+  // Column weight near the camera's axis (azimuth 0 and 180, the foci of expansion and contraction, where
+  // a trolley's own translation makes no parallax): w(a) = axis_floor + (1 - axis_floor) * cos(a)^2.
+  // axis_floor = 1 weighs all columns alike.
+  double axis_floor = 0.25;
+  // Spectral taper: frequencies above this fraction of Nyquist are faded out (whitened high frequencies
+  // are mostly noise and aliasing).
+  double max_frequency_fraction = 0.5;
+  double max_turn_deg_per_frame = 12.0;  // bounds the peak search (a trolley does not spin faster)
+  std::vector<int> frame_offsets = {1, 2, 4, 8};  // each frame is registered against these earlier frames
+  double min_peak = 0.05;  // weaker correlation peaks are treated as failures
+
+  // Empty when valid, otherwise what is wrong.
+  std::string check() const;
+};
+
+// Ring image of a BGR (CV_8UC3) or gray (CV_8U / CV_32F) equirectangular frame: one value per column.
+std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options);
+
+struct RingShift {
+  double shift_px = 0.0;  // b(x) ~ a(x - shift): b is a turned right by shift pixels
+  double peak = 0.0;      // normalised correlation at the peak (1 = identical up to the shift)
+  bool valid = false;
+};
+
+// Circular phase correlation on the exact length (no padding), peak searched within
+// |shift - center_px| <= max_shift_px and refined to sub-pixel by Newton steps on the band-limited (trigonometric) interpolation of the
+// correlation. `window_a` (optional, same length) weights the columns of `a`; the window for `b` follows
+// it through the estimated shift so that the window itself does not pull the peak towards zero.
+RingShift circular_phase_correlation(const std::vector<double>& a, const std::vector<double>& b,
+                                     double center_px, double max_shift_px, const std::vector<double>* window_a = nullptr,
+                                     double max_frequency_fraction = 0.5);
+
+// Column weights of RingOptions::axis_floor for a ring of `width` columns, evaluated at column positions
+// shifted by `shift_px`.
+std::vector<double> axis_window(int width, double axis_floor, double shift_px = 0.0);
+
+struct RingHeadings {
+  std::vector<double> headings;   // radians, unwrapped, frame 0 = 0
+  std::vector<double> step_peak;  // correlation peak of frame i against frame i-1 (0 for frame 0)
+  std::vector<bool> failed;       // frame had no valid registration against any earlier frame
+  int registrations = 0;          // pairwise registrations used in the joint solve
+};
+
+// Registers every ring against several earlier ones (RingOptions::frame_offsets) and solves all headings
+// jointly by robust (iteratively reweighted) least squares.
+RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options);
+
+}  // namespace plenopath
