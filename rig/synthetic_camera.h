@@ -61,6 +61,7 @@ struct SceneFace {
   int material = 0;            // which procedural texture
   double u_offset = 0.0;       // texture offset along the face, metres (per-surface seed)
   cv::Vec3f tint{1, 1, 1};     // per-surface colour multiplier (BGR)
+  float shade = 1.0f;          // diffuse lighting factor (ambient + a few directional lights)
   int poster_begin = 0, poster_end = 0;  // posters on this face: SyntheticScene::posters[begin, end)
 };
 
@@ -70,6 +71,7 @@ struct SceneFootprint {
   double top = 0.0;
   int material = 0;
   cv::Vec3f tint{1, 1, 1};
+  Eigen::Vector2d texture_offset = Eigen::Vector2d::Zero();  // metres
 };
 
 // A framed poster on a wall face: a rectangle in the face's (u along a->b, z) coordinates.
@@ -99,7 +101,7 @@ struct RenderOptions {
   int width = 2048;   // equirectangular width, pixels (any size >= 8)
   int height = 1024;  // equirectangular height, pixels
   bool depth = true;  // also fill RenderedPanorama::depth
-  int threads = 0;    // 0 = all cores
+  int threads = 0;    // 1 = only the calling thread; otherwise OpenCV's thread pool (all cores)
   // Realism switches, all off by default.
   double noise_sigma = 0.0;        // Gaussian sensor noise, in 8-bit grey levels; seeded by noise_seed and frame
   std::uint32_t noise_seed = 7;
@@ -147,7 +149,7 @@ struct AutoWalkOptions {
   double step = 0.08;            // metres between frames on average
   double step_wobble = 0.25;     // relative variation of the step (a hand-pushed trolley)
   double heading_wobble_deg = 2.0;  // amplitude of the heading wobble around the path tangent
-  double clearance = 0.45;       // metres kept from walls and furniture
+  double clearance = 0.33;       // metres kept from walls and furniture (less than half a doorway)
   double room_spacing = 2.5;     // metres between waypoints (about one per room)
   int max_frames = 0;            // 0 = the whole walk
   std::uint32_t seed = 3;

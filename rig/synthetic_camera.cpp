@@ -1,0 +1,649 @@
+// The synthetic surround camera. The scene is 2.5-D, so a panorama is rendered in two passes: one 2-D ray
+// cast per column collects every vertical face the column's rays can meet (sorted by horizontal distance,
+// up to the first full-height wall), then each pixel of the column walks that short list with its own slope
+// to find the first face, floor, ceiling or furniture top. Both passes run in parallel.
+#include "rig/synthetic_camera.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <opencv2/core/utility.hpp>
+#include <functional>
+#include <set>
+
+#include "model/error.h"
+#include "rig/scene_textures.h"
+
+namespace plenopath {
+namespace {
+
+constexpr double kPi = M_PI;
+
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+  return s;
+}
+bool contains_any(const std::string& name, std::initializer_list<const char*> words) {
+  const std::string u = upper(name);
+  for (const char* w : words)
+    if (u.find(w) != std::string::npos) return true;
+  return false;
+}
+bool listed(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+bool is_full_height(SurfaceKind k) { return k == SurfaceKind::kWall || k == SurfaceKind::kPillar; }
+
+// ---- people
+struct PersonTrack {
+  Eigen::Vector2d a, b;
+  double speed = 1.2;   // m/s
+  double phase = 0.0;   // metres along the back-and-forth walk at t = 0
+  cv::Vec3f shirt, trousers;
+};
+
+bool segment_blocked(const SyntheticScene& scene, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double clearance) {
+  for (const auto& f : scene.faces) {
+    // Distance between segments pq and ab is small, or they cross.
+    const Eigen::Vector2d e = f.b - f.a, d = q - p;
+    const double denom = cross(d, e);
+    if (std::abs(denom) > 1e-12) {
+      const double t = cross(f.a - p, e) / denom, s = cross(f.a - p, d) / denom;
+      if (t >= 0 && t <= 1 && s >= 0 && s <= 1) return true;
+    }
+    auto point_segment = [](const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      const Eigen::Vector2d ab = b - a;
+      const double l2 = ab.squaredNorm();
+      const double t = l2 > 0 ? std::clamp((x - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+      return (x - (a + t * ab)).norm();
+    };
+    if (point_segment(p, f.a, f.b) < clearance || point_segment(q, f.a, f.b) < clearance ||
+        point_segment(f.a, p, q) < clearance || point_segment(f.b, p, q) < clearance)
+      return true;
+  }
+  for (const auto& fp : scene.footprints)
+    if (point_in_polygon(fp.points, p) || point_in_polygon(fp.points, q)) return true;
+  return false;
+}
+
+std::vector<PersonTrack> people_tracks(const SyntheticScene& scene, int count, std::uint32_t seed) {
+  std::vector<PersonTrack> tracks;
+  for (int i = 0; i < count; ++i) {
+    cv::RNG rng(mix_hash(0x5eed00ull + seed * 7919ull + static_cast<std::uint64_t>(i)));
+    PersonTrack t;
+    bool found = false;
+    for (int attempt = 0; attempt < 500 && !found; ++attempt) {
+      t.a = {rng.uniform(scene.floor_min.x(), scene.floor_max.x()), rng.uniform(scene.floor_min.y(), scene.floor_max.y())};
+      const double angle = rng.uniform(0.0, 2 * kPi), length = rng.uniform(2.0, 7.0);
+      t.b = t.a + length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      found = !segment_blocked(scene, t.a, t.b, 0.4);
+    }
+    if (!found) continue;  // a plan too cramped for walkers
+    t.speed = rng.uniform(0.8, 1.5);
+    t.phase = rng.uniform(0.0, 20.0);
+    t.shirt = cv::Vec3f(rng.uniform(0.3f, 1.3f), rng.uniform(0.3f, 1.3f), rng.uniform(0.3f, 1.3f));
+    t.trousers = cv::Vec3f(rng.uniform(0.2f, 0.6f), rng.uniform(0.2f, 0.6f), rng.uniform(0.2f, 0.6f));
+    tracks.push_back(t);
+  }
+  return tracks;
+}
+
+struct PersonNow {
+  PersonPose pose;
+  cv::Vec3f shirt, trousers;
+};
+
+std::vector<PersonNow> people_now(const SyntheticScene& scene, const RenderOptions& o, int frame_index) {
+  std::vector<PersonNow> out;
+  if (o.people <= 0) return out;
+  const double time = frame_index / o.frame_rate;
+  const auto tracks = people_tracks(scene, o.people, o.people_seed);
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const auto& t = tracks[i];
+    const double len = (t.b - t.a).norm();
+    double s = std::fmod(t.phase + t.speed * time, 2 * len);
+    if (s > len) s = 2 * len - s;  // back and forth
+    PersonNow p;
+    p.pose.centre = t.a + (t.b - t.a) * (s / len);
+    p.pose.id = static_cast<int>(i);
+    p.shirt = t.shirt;
+    p.trousers = t.trousers;
+    out.push_back(p);
+  }
+  return out;
+}
+
+// ---- the per-column ray cast
+struct Crossing {
+  double d;           // horizontal distance from the origin, metres
+  double u;           // texture coordinate along the surface, metres
+  float top;          // height of the face's top
+  float cos_incidence;  // |normal . horizontal ray direction|
+  int face;           // index into scene.faces, or -1 - person
+  int footprint;      // footprint toggled by crossing this face (furniture: index; person: nfoot + p), -1 none
+  SurfaceKind kind;
+};
+
+struct ColumnRay {
+  Eigen::Vector2d origin, dir;
+  std::vector<Crossing> crossings;
+  double d_exit = 0.0;  // where the ray leaves the floor rectangle
+};
+
+// What a frame needs besides the scene.
+struct FrameContext {
+  const SyntheticScene* scene = nullptr;
+  std::vector<PersonNow> people;
+  std::vector<float> footprint_tops;  // furniture footprints, then people
+  int start_footprint = -1;           // footprint containing the origin
+  double cam_z = 1.6;
+  Eigen::Vector2d origin;
+  float gain = 1.0f;
+};
+
+FrameContext make_context(const SyntheticScene& scene, const RenderOptions& o, const Eigen::Vector3d& origin,
+                          int frame_index) {
+  FrameContext c;
+  c.scene = &scene;
+  c.origin = origin.head<2>();
+  c.cam_z = origin.z();
+  for (const auto& p : people_now(scene, o, frame_index))  // nobody stands inside the camera
+    if ((p.pose.centre - c.origin).norm() > p.pose.radius + 0.05) c.people.push_back(p);
+  for (const auto& fp : scene.footprints) c.footprint_tops.push_back(static_cast<float>(fp.top));
+  for (const auto& p : c.people) c.footprint_tops.push_back(static_cast<float>(p.pose.height));
+  for (std::size_t i = 0; i < scene.footprints.size(); ++i)
+    if (point_in_polygon(scene.footprints[i].points, c.origin)) c.start_footprint = static_cast<int>(i);
+  c.gain = static_cast<float>(1.0 + o.exposure_drift * std::sin(2 * kPi * frame_index / o.exposure_period_frames + 0.7));
+  return c;
+}
+
+void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay& ray) {
+  const SyntheticScene& scene = *ctx.scene;
+  ray.origin = ctx.origin;
+  ray.dir = dir;
+  ray.crossings.clear();
+  // Exit from the floor rectangle (slabs).
+  double exit = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    if (dir[k] > 0) exit = std::min(exit, (scene.floor_max[k] - ctx.origin[k]) / dir[k]);
+    else if (dir[k] < 0) exit = std::min(exit, (scene.floor_min[k] - ctx.origin[k]) / dir[k]);
+  }
+  ray.d_exit = std::max(0.0, exit);
+  for (std::size_t i = 0; i < scene.faces.size(); ++i) {
+    const SceneFace& f = scene.faces[i];
+    const Eigen::Vector2d e = f.b - f.a;
+    const double denom = cross(dir, e);
+    if (denom == 0.0) continue;
+    const Eigen::Vector2d w = f.a - ctx.origin;
+    const double t = cross(w, e) / denom;
+    if (!(t > 0.0)) continue;
+    const double s = cross(w, dir) / denom;
+    if (s < 0.0 || s > 1.0) continue;
+    const double len = e.norm();
+    ray.crossings.push_back({t, s * len + f.u_offset, static_cast<float>(f.top),
+                             static_cast<float>(std::abs(denom) / len), static_cast<int>(i), f.footprint, f.kind});
+  }
+  const int nfoot = static_cast<int>(ctx.scene->footprints.size());
+  for (std::size_t p = 0; p < ctx.people.size(); ++p) {
+    const PersonPose& person = ctx.people[p].pose;
+    const Eigen::Vector2d oc = ctx.origin - person.centre;
+    const double b = oc.dot(dir), c = oc.squaredNorm() - person.radius * person.radius;
+    const double disc = b * b - c;
+    if (disc <= 0) continue;
+    const double root = std::sqrt(disc);
+    const double t1 = -b - root, t2 = -b + root;
+    if (t2 <= 0) continue;
+    auto around = [&](double t) {
+      const Eigen::Vector2d q = ctx.origin + t * dir - person.centre;
+      return (std::atan2(q.y(), q.x()) + kPi) * person.radius;
+    };
+    const int id = -1 - static_cast<int>(p);
+    if (t1 > 0) ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), static_cast<float>(root / person.radius), id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+    ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), static_cast<float>(root / person.radius), id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+  }
+  std::sort(ray.crossings.begin(), ray.crossings.end(), [](const Crossing& a, const Crossing& b) { return a.d < b.d; });
+  for (std::size_t i = 0; i < ray.crossings.size(); ++i)
+    if (is_full_height(ray.crossings[i].kind)) {
+      ray.crossings.resize(i + 1);
+      break;
+    }
+}
+
+struct Hit {
+  double d = 0.0;  // horizontal distance
+  SurfaceKind kind = SurfaceKind::kNone;
+  const Crossing* crossing = nullptr;  // for vertical faces
+  int footprint = -1;                  // for tops
+};
+
+// The first surface met by the ray of slope s (= tan elevation) along the column.
+inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, double s) {
+  const double cam_z = ctx.cam_z;
+  const double ceiling_z = ctx.scene->options.wall_height;
+  int inside = ctx.start_footprint;
+  auto horizontal = [&](double limit, Hit& hit) {
+    if (s < 0) {
+      const double level = inside >= 0 ? ctx.footprint_tops[inside] : 0.0;
+      const double dh = (cam_z - level) / -s;
+      if (dh < limit) {
+        hit.d = dh;
+        hit.footprint = inside;
+        hit.kind = inside >= 0 ? (inside < static_cast<int>(ctx.scene->footprints.size()) ? SurfaceKind::kFurnitureTop : SurfaceKind::kPerson)
+                               : SurfaceKind::kFloor;
+        return true;
+      }
+    } else if (s > 0) {
+      const double dc = (ceiling_z - cam_z) / s;
+      if (dc < limit) {
+        hit.d = dc;
+        hit.kind = SurfaceKind::kCeiling;
+        return true;
+      }
+    }
+    return false;
+  };
+  Hit hit;
+  for (const Crossing& c : ray.crossings) {
+    if (horizontal(c.d, hit)) {
+      if ((hit.kind == SurfaceKind::kFloor || hit.kind == SurfaceKind::kCeiling) && hit.d > ray.d_exit) return Hit{};
+      return hit;
+    }
+    const double z = cam_z + s * c.d;
+    if (is_full_height(c.kind) || (z >= 0.0 && z <= c.top)) {
+      hit.d = c.d;
+      hit.kind = c.kind;
+      hit.crossing = &c;
+      return hit;
+    }
+    if (c.footprint >= 0) inside = inside == c.footprint ? -1 : c.footprint;
+  }
+  if (inside >= 0) {  // still above a top: it must be met before infinity
+    if (horizontal(std::numeric_limits<double>::infinity(), hit)) return hit;
+    return Hit{};
+  }
+  if (horizontal(ray.d_exit, hit)) return hit;
+  return Hit{};
+}
+
+// ---- texturing
+inline cv::Vec3f sample_bilinear(const cv::Mat& img, double x, double y, bool periodic) {
+  // (x, y) in this level's texels; texel (i, j) has its centre at (i + 0.5, j + 0.5).
+  x -= 0.5;
+  y -= 0.5;
+  const double fx0 = std::floor(x), fy0 = std::floor(y);
+  const float ax = static_cast<float>(x - fx0), ay = static_cast<float>(y - fy0);
+  long x0 = static_cast<long>(fx0), y0 = static_cast<long>(fy0);
+  long x1 = x0 + 1, y1 = y0 + 1;
+  const long w = img.cols, h = img.rows;
+  if (periodic) {  // power-of-two sizes
+    x0 &= w - 1;
+    x1 &= w - 1;
+    y0 &= h - 1;
+    y1 &= h - 1;
+  } else {
+    x0 = std::clamp(x0, 0L, w - 1);
+    x1 = std::clamp(x1, 0L, w - 1);
+    y0 = std::clamp(y0, 0L, h - 1);
+    y1 = std::clamp(y1, 0L, h - 1);
+  }
+  const uchar* r0 = img.ptr<uchar>(static_cast<int>(y0));
+  const uchar* r1 = img.ptr<uchar>(static_cast<int>(y1));
+  const uchar* p00 = r0 + 3 * x0;
+  const uchar* p01 = r0 + 3 * x1;
+  const uchar* p10 = r1 + 3 * x0;
+  const uchar* p11 = r1 + 3 * x1;
+  const float w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
+  return {w00 * p00[0] + w01 * p01[0] + w10 * p10[0] + w11 * p11[0],
+          w00 * p00[1] + w01 * p01[1] + w10 * p10[1] + w11 * p11[1],
+          w00 * p00[2] + w01 * p01[2] + w10 * p10[2] + w11 * p11[2]};
+}
+
+// Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel.
+inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
+  int level = 0;
+  if (footprint > 1.0) {
+    int e;
+    std::frexp(footprint, &e);  // footprint in [2^(e-1), 2^e)
+    level = std::min(e - 1, static_cast<int>(t.levels.size()) - 1);
+  }
+  const double scale = std::ldexp(1.0, -level);
+  return sample_bilinear(t.levels[level], x * scale, y * scale, periodic);
+}
+
+inline cv::Vec3b to_bgr(const cv::Vec3f& c) {
+  return {cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]), cv::saturate_cast<uchar>(c[2])};
+}
+
+const cv::Vec3b kSky(235, 206, 160);
+
+// Colour of a hit. pixel_angle: the angular size of a pixel (radians), for mip selection; distance: along
+// the 3-D ray; cos_e: cosine of the ray's elevation; sin_e: its sine.
+cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, double s, double distance,
+                double pixel_angle, double cos_e, double sin_e) {
+  const SyntheticScene& scene = *ctx.scene;
+  const SceneTextures& tex = *scene.textures;
+  const double tpm = tex.texels_per_metre;
+  const double z = ctx.cam_z + s * hit.d;
+  const double base_footprint = distance * pixel_angle * tpm;
+  cv::Vec3f colour;
+  switch (hit.kind) {
+    case SurfaceKind::kNone:
+      return kSky;
+    case SurfaceKind::kFloor:
+    case SurfaceKind::kCeiling:
+    case SurfaceKind::kFurnitureTop: {
+      const Eigen::Vector2d p = ray.origin + hit.d * ray.dir;
+      const double footprint = base_footprint / std::sqrt(std::max(std::abs(sin_e), 0.02));
+      if (hit.kind == SurfaceKind::kFurnitureTop) {
+        const SceneFootprint& fp = scene.footprints[hit.footprint];
+        const cv::Vec3f c = sample_texture(tex.materials[kMaterialFurnitureTop], (p.x() + fp.texture_offset.x()) * tpm,
+                                           -(p.y() + fp.texture_offset.y()) * tpm, footprint, true);
+        colour = c.mul(fp.tint) * 0.97f;
+      } else if (hit.kind == SurfaceKind::kFloor) {
+        colour = sample_texture(tex.materials[kMaterialFloor], p.x() * tpm, -p.y() * tpm, footprint, true) * 0.9f;
+      } else {
+        colour = sample_texture(tex.materials[kMaterialCeiling], p.x() * tpm, -p.y() * tpm, footprint, true);
+      }
+      break;
+    }
+    case SurfaceKind::kPerson: {
+      const PersonNow& person = ctx.people[hit.crossing ? -1 - hit.crossing->face : hit.footprint - static_cast<int>(scene.footprints.size())];
+      if (!hit.crossing) {  // the top of the head
+        colour = cv::Vec3f(60, 70, 90);
+        break;
+      }
+      const double footprint = base_footprint / std::sqrt(std::max<double>(hit.crossing->cos_incidence * cos_e, 0.02));
+      const cv::Vec3f c = sample_texture(tex.materials[kMaterialCloth], hit.crossing->u * tpm, (2.0 - z) * tpm, footprint, true);
+      if (z > 1.5)
+        colour = cv::Vec3f(110, 140, 190) + 0.2f * c;  // face and hair
+      else if (z > 0.85)
+        colour = c.mul(person.shirt);
+      else
+        colour = c.mul(person.trousers);
+      colour *= 0.6f + 0.4f * hit.crossing->cos_incidence;
+      break;
+    }
+    default: {  // walls, pillars, furniture sides
+      const Crossing& c = *hit.crossing;
+      const SceneFace& f = scene.faces[c.face];
+      const double footprint = base_footprint / std::sqrt(std::max<double>(c.cos_incidence * cos_e, 0.02));
+      for (int i = f.poster_begin; i < f.poster_end; ++i) {
+        const ScenePoster& p = scene.posters[i];
+        if (c.u >= p.u0 && c.u <= p.u1 && z >= p.z0 && z <= p.z1) {
+          const TexturePyramid& img = tex.posters[p.image];
+          const double px_per_m = img.levels[0].cols / (p.u1 - p.u0);
+          colour = sample_texture(img, (c.u - p.u0) * px_per_m, (p.z1 - z) / (p.z1 - p.z0) * img.levels[0].rows,
+                                  footprint * px_per_m / tpm, false) * f.shade;
+          return to_bgr(colour * ctx.gain);
+        }
+      }
+      const cv::Vec3f t = sample_texture(tex.materials[f.material], c.u * tpm, (f.top - z) * tpm, footprint, true);
+      // A little darker near the floor (a cheap stand-in for ambient occlusion).
+      const float occlusion = static_cast<float>(std::min(1.0, 0.8 + z));
+      colour = t.mul(f.tint) * (f.shade * occlusion);
+      break;
+    }
+  }
+  return to_bgr(colour * ctx.gain);
+}
+
+void add_noise(cv::Mat& rgb, const RenderOptions& o, int frame_index) {
+  if (o.noise_sigma <= 0) return;
+  cv::RNG rng(mix_hash(0x4015eull + o.noise_seed * 1000003ull + static_cast<std::uint64_t>(frame_index)));
+  cv::Mat noise(rgb.size(), CV_16SC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0.0, o.noise_sigma);
+  cv::Mat sum;
+  cv::add(rgb, noise, sum, cv::noArray(), CV_16SC3);
+  sum.convertTo(rgb, CV_8UC3);
+}
+
+}  // namespace
+
+// ---- options
+std::string SceneOptions::check() const {
+  if (!(wall_height > 0.0) || wall_height > 100.0) return "wall_height must be in (0, 100] m";
+  if (!(camera_height > 0.0) || camera_height >= wall_height) return "camera_height must be in (0, wall_height)";
+  if (!(furniture_height > 0.0) || furniture_height > wall_height) return "furniture_height must be in (0, wall_height]";
+  for (const auto& [layer, h] : furniture_layer_heights)
+    if (!(h > 0.0) || h > wall_height) return "furniture height of layer '" + layer + "' must be in (0, wall_height]";
+  if (!(floor_margin >= 0.0)) return "floor_margin must be >= 0";
+  if (texture_size < 16 || texture_size > 8192 || (texture_size & (texture_size - 1)) != 0)
+    return "texture_size must be a power of two in [16, 8192]";
+  if (!(texels_per_metre > 0.0)) return "texels_per_metre must be > 0";
+  return {};
+}
+
+std::string RenderOptions::check() const {
+  if (width < 8 || height < 4 || width > 32768 || height > 16384) return "size must be between 8x4 and 32768x16384";
+  if (threads < 0) return "threads must be >= 0";
+  if (!(noise_sigma >= 0.0) || noise_sigma > 100.0) return "noise_sigma must be in [0, 100]";
+  if (!(exposure_drift >= 0.0) || exposure_drift >= 1.0) return "exposure_drift must be in [0, 1)";
+  if (!(exposure_period_frames > 0.0)) return "exposure_period_frames must be > 0";
+  if (people < 0 || people > 1000) return "people must be in [0, 1000]";
+  if (!(frame_rate > 0.0)) return "frame_rate must be > 0";
+  if (jpeg_quality < 1 || jpeg_quality > 100) return "jpeg_quality must be in [1, 100]";
+  return {};
+}
+
+// ---- scene
+SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& options) {
+  if (const std::string e = options.check(); !e.empty()) throw Error("synthetic scene options: " + e);
+  SyntheticScene scene;
+  scene.options = options;
+  const std::uint64_t seed = options.texture_seed;
+
+  auto selected = [&](const std::string& layer) {
+    if (!options.layers.empty()) return listed(options.layers, layer);
+    const PlanLayer* l = plan.find_layer(layer);
+    return !l || l->visible;
+  };
+  auto is_column = [&](const std::string& layer) {
+    return options.column_layers.empty() ? contains_any(layer, {"COL", "PILLAR"}) : listed(options.column_layers, layer);
+  };
+  auto is_furniture = [&](const std::string& layer) {
+    return options.furniture_layers.empty() ? contains_any(layer, {"FURN", "DESK", "TABLE", "EQUIP"})
+                                            : listed(options.furniture_layers, layer);
+  };
+  auto furniture_top = [&](const std::string& layer) {
+    auto it = options.furniture_layer_heights.find(layer);
+    return it == options.furniture_layer_heights.end() ? options.furniture_height : it->second;
+  };
+
+  auto add_face = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, SurfaceKind kind, int footprint) {
+    if ((b - a).norm() < 1e-9) return;
+    SceneFace f;
+    f.a = a;
+    f.b = b;
+    f.top = top;
+    f.kind = kind;
+    f.footprint = footprint;
+    scene.faces.push_back(f);
+  };
+  std::set<std::string> furniture_layers_with_outlines;
+  for (const auto& o : plan.outlines)
+    if (o.closed && o.points.size() >= 3 && selected(o.layer) && is_furniture(o.layer) && !is_column(o.layer)) {
+      furniture_layers_with_outlines.insert(o.layer);
+      SceneFootprint fp;
+      fp.points = o.points;
+      fp.top = furniture_top(o.layer);
+      const int id = static_cast<int>(scene.footprints.size());
+      for (std::size_t i = 0; i < o.points.size(); ++i)
+        add_face(o.points[i], o.points[(i + 1) % o.points.size()], fp.top, SurfaceKind::kFurnitureSide, id);
+      scene.footprints.push_back(fp);
+    }
+  for (const auto& s : plan.segments) {
+    if (!selected(s.layer)) continue;
+    if (is_column(s.layer))
+      add_face(s.a, s.b, options.wall_height, SurfaceKind::kPillar, -1);
+    else if (is_furniture(s.layer)) {
+      if (!furniture_layers_with_outlines.count(s.layer))  // loose furniture lines: low double-sided faces
+        add_face(s.a, s.b, furniture_top(s.layer), SurfaceKind::kFurnitureSide, -1);
+    } else if (s.occluder)
+      add_face(s.a, s.b, options.wall_height, SurfaceKind::kWall, -1);
+  }
+  if (scene.faces.empty())
+    throw Error((plan.source_file.empty() ? std::string("floor plan") : plan.source_file) +
+                ": nothing to render: no occluding, column or furniture geometry on the selected layers");
+
+  // Extents of what is rendered.
+  Eigen::Vector2d lo = scene.faces[0].a, hi = scene.faces[0].a;
+  for (const auto& f : scene.faces) {
+    lo = lo.cwiseMin(f.a).cwiseMin(f.b);
+    hi = hi.cwiseMax(f.a).cwiseMax(f.b);
+  }
+  scene.floor_min = lo - Eigen::Vector2d::Constant(options.floor_margin);
+  scene.floor_max = hi + Eigen::Vector2d::Constant(options.floor_margin);
+
+  // Per-surface materials, tints, offsets, lighting and posters: deterministic in (seed, surface index).
+  const Eigen::Vector2d light1 = Eigen::Vector2d(0.6, 0.8), light2 = Eigen::Vector2d(-0.8, 0.3).normalized();
+  for (std::size_t i = 0; i < scene.faces.size(); ++i) {
+    SceneFace& f = scene.faces[i];
+    const std::uint64_t h = mix_hash(seed * 0x100000001b3ull + i);
+    auto unit = [h](int k) { return hash_unit(h + static_cast<std::uint64_t>(k)); };
+    switch (f.kind) {
+      case SurfaceKind::kPillar: f.material = kMaterialPillar; break;
+      case SurfaceKind::kFurnitureSide: f.material = kMaterialFurnitureSide; break;
+      default: f.material = kMaterialWall0 + static_cast<int>(unit(1) * kMaterialWallCount) % kMaterialWallCount;
+    }
+    f.u_offset = unit(2) * 64.0;
+    f.tint = cv::Vec3f(static_cast<float>(0.85 + 0.3 * unit(3)), static_cast<float>(0.85 + 0.3 * unit(4)),
+                       static_cast<float>(0.85 + 0.3 * unit(5)));
+    const Eigen::Vector2d e = (f.b - f.a).normalized();
+    const Eigen::Vector2d n(-e.y(), e.x());
+    f.shade = static_cast<float>(0.62 + 0.25 * std::abs(n.dot(light1)) + 0.13 * std::abs(n.dot(light2)));
+    f.poster_begin = static_cast<int>(scene.posters.size());
+    const double len = (f.b - f.a).norm();
+    if (f.kind == SurfaceKind::kWall && len >= 1.6 && unit(6) < 0.6) {
+      ScenePoster p;
+      const double w = 0.6 + 0.4 * unit(7), hgt = w * 352.0 / 256.0;
+      const double centre = f.u_offset + 0.2 + w / 2 + unit(8) * (len - 0.4 - w);
+      p.u0 = centre - w / 2;
+      p.u1 = centre + w / 2;
+      p.z0 = 1.45 - hgt / 2 + 0.2 * unit(9);
+      p.z1 = p.z0 + hgt;
+      p.image = static_cast<int>(unit(10) * 8) % 8;
+      if (p.z1 < options.wall_height - 0.05) scene.posters.push_back(p);
+    }
+    f.poster_end = static_cast<int>(scene.posters.size());
+  }
+  for (std::size_t i = 0; i < scene.footprints.size(); ++i) {
+    const std::uint64_t h = mix_hash(seed * 0x9e3779b1ull + 77 + i);
+    SceneFootprint& fp = scene.footprints[i];
+    fp.material = kMaterialFurnitureTop;
+    fp.tint = cv::Vec3f(static_cast<float>(0.8 + 0.4 * hash_unit(h)), static_cast<float>(0.8 + 0.4 * hash_unit(h + 1)),
+                        static_cast<float>(0.8 + 0.4 * hash_unit(h + 2)));
+    fp.texture_offset = Eigen::Vector2d(hash_unit(h + 3) * 16.0, hash_unit(h + 4) * 16.0);
+  }
+  scene.textures = make_scene_textures(options.texture_seed, options.texture_size, options.texels_per_metre);
+  return scene;
+}
+
+// ---- rendering
+RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options) {
+  if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
+  if (!scene.textures) throw Error("render_panorama: the scene was not built with build_synthetic_scene");
+  const int w = options.width, h = options.height;
+  const FrameContext ctx = make_context(scene, options, {pose.x, pose.y, scene.options.camera_height}, pose.index);
+
+  std::vector<ColumnRay> columns(w);
+  // threads == 1 keeps everything on the calling thread; otherwise OpenCV's pool does the work.
+  const int stripes = std::max(1, cv::getNumThreads());
+  auto run = [&options](const cv::Range& range, int nstripes, const std::function<void(const cv::Range&)>& body) {
+    if (options.threads == 1)
+      body(range);
+    else
+      cv::parallel_for_(range, body, nstripes);
+  };
+  run(cv::Range(0, w), stripes * 4, [&](const cv::Range& r) {
+    for (int u = r.start; u < r.end; ++u) {
+      const double azimuth = (u + 0.5) / w * 2.0 * kPi - kPi;
+      const double angle = pose.heading - azimuth;  // world angle of the column
+      cast_column(ctx, Eigen::Vector2d(std::cos(angle), std::sin(angle)), columns[u]);
+    }
+  });
+
+  RenderedPanorama out;
+  out.rgb.create(h, w, CV_8UC3);
+  if (options.depth) out.depth.create(h, w, CV_32F);
+  const double pixel_angle = 2.0 * kPi / w;
+  run(cv::Range(0, h), stripes * 8, [&](const cv::Range& r) {
+    for (int v = r.start; v < r.end; ++v) {
+      const double elevation = kPi / 2.0 - (v + 0.5) / h * kPi;
+      const double s = std::tan(elevation), cos_e = std::cos(elevation), sin_e = std::sin(elevation);
+      cv::Vec3b* rgb = out.rgb.ptr<cv::Vec3b>(v);
+      float* depth = options.depth ? out.depth.ptr<float>(v) : nullptr;
+      for (int u = 0; u < w; ++u) {
+        const Hit hit = first_hit(ctx, columns[u], s);
+        const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / cos_e;
+        rgb[u] = shade(ctx, columns[u], hit, s, distance, pixel_angle, cos_e, sin_e);
+        if (depth) depth[u] = static_cast<float>(distance);
+      }
+    }
+  });
+  add_noise(out.rgb, options, pose.index);
+  return out;
+}
+
+RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                 const RenderOptions& options, int frame_index) {
+  if (!scene.textures) throw Error("trace_ray: the scene was not built with build_synthetic_scene");
+  const FrameContext ctx = make_context(scene, options, origin, frame_index);
+  const Eigen::Vector3d d = direction.normalized();
+  const double horizontal = std::hypot(d.x(), d.y());
+  ColumnRay ray;
+  const double pixel_angle = 2.0 * kPi / options.width;
+  RayHit result;
+  const double cos_e = horizontal, sin_e = d.z();
+  if (horizontal < 1e-12) {  // straight up or down: no face can be met
+    ray.origin = ctx.origin;
+    ray.dir = Eigen::Vector2d(1, 0);
+    ray.d_exit = 0;
+    Hit hit;
+    const bool inside_floor = (ctx.origin.array() >= scene.floor_min.array()).all() &&
+                              (ctx.origin.array() <= scene.floor_max.array()).all();
+    double dist = 0;
+    if (d.z() < 0) {
+      const double level = ctx.start_footprint >= 0 ? ctx.footprint_tops[ctx.start_footprint] : 0.0;
+      if (ctx.start_footprint >= 0 || inside_floor) {
+        hit.kind = ctx.start_footprint >= 0 ? SurfaceKind::kFurnitureTop : SurfaceKind::kFloor;
+        hit.footprint = ctx.start_footprint;
+        dist = ctx.cam_z - level;
+      }
+    } else if (inside_floor) {
+      hit.kind = SurfaceKind::kCeiling;
+      dist = scene.options.wall_height - ctx.cam_z;
+    }
+    result.distance = dist;
+    result.kind = hit.kind;
+    result.bgr = shade(ctx, ray, hit, 0.0, dist, pixel_angle, 1e-9, sin_e);
+    return result;
+  }
+  cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray);
+  const double s = d.z() / horizontal;
+  const Hit hit = first_hit(ctx, ray, s);
+  result.kind = hit.kind;
+  result.distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
+  result.bgr = shade(ctx, ray, hit, s, result.distance, pixel_angle, cos_e, sin_e);
+  return result;
+}
+
+std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options, int frame_index) {
+  std::vector<PersonPose> out;
+  for (const auto& p : people_now(scene, options, frame_index)) out.push_back(p.pose);
+  return out;
+}
+
+}  // namespace plenopath
