@@ -62,6 +62,9 @@ class FrameCache {
   // Tells the worker where the play head is and which way it moves (+1 forward, -1 backward). Frames
   // already queued that are no longer near the play head are dropped from the queue.
   void prefetch(int play_head, int direction = +1);
+  // Asks the worker to make thumbnails for frames first, first+step, ... <= last (the timeline's visible
+  // range), after the frames near the play head. Replaces the previous thumbnail request.
+  void prefetch_thumbnails(int first, int last, int step = 1);
   // Blocks until the worker has nothing queued (for tests and benchmarks).
   void wait_for_prefetch();
 
