@@ -162,6 +162,33 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
   std::vector<Eigen::Vector2d> pts;
   for (std::size_t i = 0; i < route.size(); ++i)
     if (i % 3 == 0 || i + 1 == route.size()) pts.push_back(to_plan(route[i].x, route[i].y));
+  // Where the route turns back (a dead end) the trolley makes a U-turn instead of reversing on the spot:
+  // the way in keeps to the left, the way out to the right, joined by a half circle, as wide as the free
+  // space there allows.
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const Eigen::Vector2d in = (pts[i] - pts[i - 1]).normalized(), out = (pts[i + 1] - pts[i]).normalized();
+    if (in.dot(out) > -0.5) continue;  // turns of less than 120 degrees stay as they are
+    const cv::Point cell = to_cell(pts[i]);
+    const double room = distance.at<float>(std::clamp(cell.y, 0, rows - 1), std::clamp(cell.x, 0, cols - 1));
+    const double r = std::clamp(room - options.clearance - 0.05, 0.15, 0.8);
+    const Eigen::Vector2d left(-in.y(), in.x());
+    const double lane = 1.5;  // metres over which the lanes merge back into the route
+    for (std::size_t k = i; k-- > 0 && (pts[k] - pts[i]).norm() < lane;)
+      pts[k] += r * (1.0 - (pts[k] - pts[i]).norm() / lane) * left;
+    for (std::size_t k = i + 1; k < pts.size() && (pts[k] - pts[i]).norm() < lane; ++k)
+      pts[k] -= r * (1.0 - (pts[k] - pts[i]).norm() / lane) * left;
+    const Eigen::Vector2d centre = pts[i];
+    const double start = std::atan2(left.y(), left.x());
+    const int n = std::max(6, static_cast<int>(M_PI * r / 0.12));
+    std::vector<Eigen::Vector2d> turn;
+    for (int k = 0; k <= n; ++k) {  // clockwise from the left lane to the right lane
+      const double a = start - M_PI * k / n;
+      turn.push_back(centre + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+    pts.erase(pts.begin() + static_cast<long>(i));
+    pts.insert(pts.begin() + static_cast<long>(i), turn.begin(), turn.end());
+    i += turn.size();
+  }
   for (int iteration = 0; iteration < 4 && pts.size() > 2; ++iteration) {
     std::vector<Eigen::Vector2d> cut{pts.front()};
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
