@@ -38,7 +38,11 @@ struct Envelope {
   double area = 0.0;                     // m^2; 0 unless ok
 };
 
+// Which CGAL visibility class answers envelope queries (the benchmark compares them).
+enum class VisibilityAlgorithm { triangular_expansion, rotational_sweep };
+
 struct VisibilityOptions {
+  VisibilityAlgorithm algorithm = VisibilityAlgorithm::triangular_expansion;
   // Endpoints closer than this (metres) are merged before the arrangement is built.
   double snap_tolerance_m = 0.001;
   // Width (metres) of the thin rectangle that replaces a dangling wall.
@@ -49,6 +53,8 @@ struct VisibilityOptions {
   std::size_t max_critical_lines = 20000;
   // Threads used for the per-vertex visibility polygons of cells_along_path (0 = hardware concurrency).
   int threads = 0;
+  // area_mean by Simpson's rule over each cell (one extra envelope per event); false = area_mid.
+  bool area_mean_simpson = true;
 
   void check() const;  // throws plenopath::Error saying which field is wrong
 };
@@ -75,7 +81,11 @@ class VisibilityIndex {
 
   // Visibility events along the path polyline (where the set of visible plan vertices changes), the cells
   // between them, and the critical lines (windows of the vertices' visibility polygons) for display.
-  // Event.frame is the position i in path.frames of the path segment [i, i+1] holding the event.
+  // Event.frame is the position i in path.frames of the path segment [i, i+1] holding the event. The path
+  // also has an event where it crosses a wall. A cell spans [s_begin, s_end] between consecutive events
+  // (the first starts at 0, the last ends at the path's length); first_frame/last_frame are the positions
+  // of the first and last frame inside it, or both the frame nearest its middle if no frame falls inside.
+  // The envelope is computed once per cell (its middle) and once per event (for area_mean), never per frame.
   VisibilityCells cells_along_path(const CameraPath& path) const;
 
   // The segments CGAL sees after snapping and thickening (for display and for independent test oracles).
@@ -84,6 +94,10 @@ class VisibilityIndex {
   std::vector<Eigen::Vector2d> vertices() const;
 
  private:
+  // Windows of every plan vertex's visibility polygon: the critical lines the events come from.
+  std::vector<CriticalLine> vertex_windows() const;
+  const VisibilityOptions& options() const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
