@@ -1,0 +1,67 @@
+// `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
+//  [--quality 85] [--pannellum] [--geojson] [--json]`: the packaged walkthrough.
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/cli/command.h"
+#include "model/project_io.h"
+#include "processing/export/tour_export.h"
+
+namespace plenopath::cli {
+
+Command add_export_command(CLI::App& parent) {
+  struct Options {
+    std::string project, out;
+    int max_size = 0, preview_size = 0, quality = 0;
+    bool pannellum = false, geojson = false, json = false, http_only = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = parent.add_subcommand("export", "Export a packaged walkthrough (web player, tour.json, images)");
+  sub->add_option("--project", o->project, "Project file (*.plenopath)")->required();
+  sub->add_option("--out", o->out, "Output folder, or a file ending in .zip")->required();
+  sub->add_option("--max-size", o->max_size, "Full keyframe width in pixels (default: the project's, 4096)");
+  sub->add_option("--preview-size", o->preview_size, "Preview keyframe width in pixels (default 1024)");
+  sub->add_option("--quality", o->quality, "JPEG quality 1..100 (default: the project's, 85)");
+  sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
+  sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
+  sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
+  sub->add_flag("--json", o->json, "Machine-readable report");
+  return {sub, [o]() {
+            const Project project = load_project(o->project);
+            TourExportOptions options = TourExportOptions::from_project(project, o->out);
+            if (o->max_size > 0) options.max_size = o->max_size;
+            if (o->preview_size > 0) options.preview_size = o->preview_size;
+            options.preview_size = std::min(options.preview_size, options.max_size);
+            if (o->quality > 0) options.jpeg_quality = o->quality;
+            options.pannellum = options.pannellum || o->pannellum;
+            options.geojson = options.geojson || o->geojson;
+            options.offline_images = !o->http_only;
+            int last_percent = -1;
+            const TourExportReport report = export_tour(project, options, [&](double f, const std::string& stage) {
+              const int percent = static_cast<int>(f * 100);
+              if (percent != last_percent) std::cerr << "\rexport: " << percent << "% " << stage << "        ";
+              last_percent = percent;
+              return true;
+            });
+            std::cerr << "\n";
+            for (const std::string& w : report.warnings) std::cerr << "export: warning: " << w << "\n";
+            if (o->json) {
+              std::cout << nlohmann::json{{"output", report.output},
+                                          {"keyframes", report.keyframes},
+                                          {"capture_frames", report.capture_frames},
+                                          {"package_bytes", report.package_bytes},
+                                          {"files", report.files.size()},
+                                          {"warnings", report.warnings}}
+                               .dump(2)
+                        << "\n";
+            } else {
+              std::cout << "Exported " << report.keyframes << " keyframes of " << report.capture_frames
+                        << " frames to " << report.output << " (" << report.package_bytes / 1024 << " KiB, "
+                        << report.files.size() << " files)\n";
+            }
+            return kExitOk;
+          }};
+}
+
+}  // namespace plenopath::cli

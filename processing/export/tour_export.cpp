@@ -1,0 +1,313 @@
+#include "processing/export/tour_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <sstream>
+
+#include "model/atomic_file.h"
+#include "model/error.h"
+#include "processing/export/player_assets.h"
+#include "processing/export/tour_interop.h"
+#include "processing/export/tour_json.h"
+#include "processing/export/zip_writer.h"
+#include "processing/frame_source.h"
+
+namespace plenopath {
+namespace fs = std::filesystem;
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
+    out += {table[v >> 18], table[(v >> 12) & 63], table[(v >> 6) & 63], table[v & 63]};
+  }
+  if (i + 1 == bytes.size()) {
+    const unsigned v = bytes[i] << 16;
+    out += {table[v >> 18], table[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == bytes.size()) {
+    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8);
+    out += {table[v >> 18], table[(v >> 12) & 63], table[(v >> 6) & 63], '='};
+  }
+  return out;
+}
+
+// Collects the package's files in memory, then writes them as a folder or a zip.
+class PackageWriter {
+ public:
+  void add(const std::string& name, std::string data) {
+    if (!is_safe_package_path(name)) throw Error("unsafe path inside the package: '" + name + "'");
+    if (!names_.insert(name).second) throw Error("duplicate file in the package: '" + name + "'");
+    entries_.push_back({name, std::move(data)});
+  }
+  const std::vector<ZipEntry>& entries() const { return entries_; }
+
+  std::uintmax_t write(const std::string& output) const {
+    if (ends_with(output, ".zip")) {
+      write_zip_file(output, entries_);
+      return fs::file_size(output);
+    }
+    // A folder: build next to it and rename, so a failed or cancelled export leaves nothing half-written.
+    const fs::path target = fs::absolute(output).lexically_normal();
+    const fs::path staging = target.string() + ".partial";
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    fs::create_directories(staging, ec);
+    if (ec) throw file_error(output, "cannot create the package folder: " + ec.message());
+    std::uintmax_t total = 0;
+    for (const ZipEntry& e : entries_) {
+      const fs::path file = staging / e.name;
+      fs::create_directories(file.parent_path(), ec);
+      std::ofstream out(file, std::ios::binary);
+      out.write(e.data.data(), static_cast<std::streamsize>(e.data.size()));
+      if (!out) throw file_error(file.string(), "write failed (disk full?)");
+      total += e.data.size();
+    }
+    fs::remove_all(target, ec);
+    if (ec) throw file_error(output, "cannot replace the previous package: " + ec.message());
+    fs::rename(staging, target, ec);
+    if (ec) throw file_error(output, "cannot move the package into place: " + ec.message());
+    return total;
+  }
+
+ private:
+  std::vector<ZipEntry> entries_;
+  std::set<std::string> names_;
+};
+
+std::string read_binary_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw file_error(file, "cannot open for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// A package-safe file name for a hotspot's media: the id (letters, digits, '-', '_') and the extension.
+std::string media_name(const std::string& id, const std::string& suffix, const std::string& source) {
+  std::string safe;
+  for (char c : id) safe += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
+  if (safe.empty()) safe = "hotspot";
+  std::string ext = fs::path(source).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext.size() > 6 || ext.find_first_not_of(".abcdefghijklmnopqrstuvwxyz0123456789") != std::string::npos)
+    ext = ".bin";
+  return "media/" + safe + suffix + ext;
+}
+
+std::string mime_type(const std::string& name) {
+  const std::string ext = fs::path(name).extension().string();
+  if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
+  if (ext == ".png") return "image/png";
+  if (ext == ".gif") return "image/gif";
+  if (ext == ".webp") return "image/webp";
+  if (ext == ".mp4" || ext == ".m4v") return "video/mp4";
+  if (ext == ".webm") return "video/webm";
+  if (ext == ".ogv") return "video/ogg";
+  if (ext == ".mp3") return "audio/mpeg";
+  if (ext == ".ogg") return "audio/ogg";
+  if (ext == ".wav") return "audio/wav";
+  return "application/octet-stream";
+}
+
+// A script that hands the asset to the player as a data URI (file:// pages cannot texture from files).
+std::string asset_script(const std::string& name, const std::string& mime, const std::vector<unsigned char>& bytes) {
+  return "plenopathAsset(\"" + name + "\",\"data:" + mime + ";base64," + base64(bytes) + "\");\n";
+}
+
+bool action_uses_media(const std::string& action) {
+  return action == "swap_image" || action == "play_video" || action == "play_sound";
+}
+
+std::string frame_stem(int frame) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "k%06d", frame);
+  return buffer;
+}
+
+std::vector<unsigned char> encode_jpeg(const cv::Mat& image, int width, int quality) {
+  cv::Mat resized;
+  if (width < image.cols)
+    cv::resize(image, resized, cv::Size(width, width / 2), 0, 0, cv::INTER_AREA);
+  else
+    resized = image;
+  std::vector<unsigned char> bytes;
+  if (!cv::imencode(".jpg", resized, bytes, {cv::IMWRITE_JPEG_QUALITY, quality, cv::IMWRITE_JPEG_PROGRESSIVE, 1}))
+    throw Error("JPEG encoding failed");
+  return bytes;
+}
+
+}  // namespace
+
+void TourExportOptions::check() const {
+  if (output.empty()) throw Error("export: no output given (a folder or a .zip file)");
+  if (max_size < 64 || max_size > 16384) throw Error("export: max_size must be within 64..16384 pixels");
+  if (preview_size < 64 || preview_size > max_size)
+    throw Error("export: preview_size must be within 64..max_size pixels");
+  if (jpeg_quality < 1 || jpeg_quality > 100) throw Error("export: jpeg_quality must be within 1..100");
+}
+
+TourExportOptions TourExportOptions::from_project(const Project& project, const std::string& output) {
+  TourExportOptions o;
+  o.output = output;
+  o.max_size = project.tour.max_size;
+  o.preview_size = std::min(project.tour.preview_size, project.tour.max_size);
+  o.jpeg_quality = project.tour.jpeg_quality;
+  o.pannellum = project.tour.export_pannellum;
+  o.geojson = project.tour.export_geojson;
+  return o;
+}
+
+std::string plan_svg(const FloorPlan& plan) {
+  const PlanExtents e = plan.extents();
+  const double margin = 0.5;
+  const Eigen::Vector2d lo = e.valid ? Eigen::Vector2d(e.min.array() - margin) : Eigen::Vector2d(0, 0);
+  const Eigen::Vector2d hi = e.valid ? Eigen::Vector2d(e.max.array() + margin) : Eigen::Vector2d(1, 1);
+  auto escape = [](const std::string& text) {
+    std::string out;
+    for (char c : text) {
+      switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+      }
+    }
+    return out;
+  };
+  std::ostringstream svg;
+  svg.precision(6);
+  svg << std::fixed;
+  // viewBox in metres with y flipped: plan (x, y) is drawn at (x, -y).
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << lo.x() << " " << -hi.y() << " "
+      << hi.x() - lo.x() << " " << hi.y() - lo.y() << "\">\n";
+  std::map<std::string, std::vector<const PlanSegment*>> by_layer;
+  for (const auto& s : plan.segments) by_layer[s.layer].push_back(&s);
+  for (const auto& [layer, segments] : by_layer) {
+    const bool occluder = !segments.empty() && segments.front()->occluder;
+    svg << "<g class=\"layer" << (occluder ? " occluder" : "") << "\" data-layer=\"" << escape(layer)
+        << "\" stroke=\"" << (occluder ? "#222" : "#888") << "\" stroke-width=\"" << (occluder ? 0.08 : 0.03)
+        << "\" stroke-linecap=\"round\" fill=\"none\">\n";
+    for (const PlanSegment* s : segments)
+      svg << "<line x1=\"" << s->a.x() << "\" y1=\"" << -s->a.y() << "\" x2=\"" << s->b.x() << "\" y2=\""
+          << -s->b.y() << "\"/>\n";
+    svg << "</g>\n";
+  }
+  svg << "<g class=\"labels\" font-family=\"sans-serif\" fill=\"#555\" text-anchor=\"middle\">\n";
+  for (const auto& l : plan.labels)
+    svg << "<text x=\"" << l.position.x() << "\" y=\"" << -l.position.y() << "\" font-size=\""
+        << (l.height > 0 ? l.height : 0.3) << "\">" << escape(l.text) << "</text>\n";
+  svg << "</g>\n</svg>\n";
+  return svg.str();
+}
+
+TourExportReport export_tour(const Project& project, const TourExportOptions& options,
+                             const ExportProgress& progress) {
+  options.check();
+  if (project.path.empty()) throw Error("export: the project has no camera path (track or import one first)");
+  if (project.keyframes.empty()) throw Error("export: the project has no keyframes (run sampling first)");
+  auto report_progress = [&](double fraction, const std::string& stage) {
+    if (progress && !progress(fraction, stage)) throw Error("export cancelled");
+  };
+
+  TourExportReport report;
+  report.output = options.output;
+  report.capture_frames = project.capture.frame_count > 0 ? project.capture.frame_count
+                                                          : static_cast<int>(project.path.size());
+  PackageWriter package;
+
+  // Keyframe images, in progressive order so that a streaming reader gets the coarse tour first.
+  report_progress(0.0, "opening capture");
+  std::unique_ptr<FrameSource> frames = FrameSource::open_capture(project.capture);
+  const std::vector<int> order = project.keyframes.progressive_order();
+  std::vector<KeyframeImageFiles> images;
+  int full_width = 0, preview_width = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    report_progress(0.05 + 0.8 * i / order.size(), "encoding keyframes");
+    const int frame = order[i];
+    if (!project.path.find_frame(frame))
+      throw Error("export: keyframe " + std::to_string(frame) + " has no pose in the path");
+    if (frame < 0 || frame >= frames->frame_count())
+      throw Error("export: keyframe " + std::to_string(frame) + " is outside the capture (" +
+                  std::to_string(frames->frame_count()) + " frames)");
+    const cv::Mat image = frames->read(frame);
+    full_width = std::min(options.max_size, image.cols) / 2 * 2;
+    preview_width = std::min(options.preview_size, full_width) / 2 * 2;
+    KeyframeImageFiles files;
+    files.frame = frame;
+    const std::string stem = "images/" + frame_stem(frame);
+    files.preview = stem + "_preview.jpg";
+    files.full = stem + "_full.jpg";
+    const std::vector<unsigned char> preview = encode_jpeg(image, preview_width, options.jpeg_quality);
+    const std::vector<unsigned char> full = encode_jpeg(image, full_width, options.jpeg_quality);
+    if (options.offline_images) {
+      files.preview_script = stem + "_preview.js";
+      files.full_script = stem + "_full.js";
+      package.add(files.preview_script, asset_script(files.preview, "image/jpeg", preview));
+      package.add(files.full_script, asset_script(files.full, "image/jpeg", full));
+    }
+    package.add(files.preview, std::string(preview.begin(), preview.end()));
+    package.add(files.full, std::string(full.begin(), full.end()));
+    images.push_back(files);
+  }
+
+  // Hotspot media: copied under media/ with safe names; missing media is a warning, not a failure.
+  report_progress(0.86, "hotspot media");
+  std::vector<HotspotMediaFile> media;
+  for (const Hotspot& h : project.hotspots) {
+    HotspotMediaFile m;
+    m.id = h.id;
+    auto copy_media = [&](const std::string& source, const std::string& suffix) -> std::string {
+      if (source.empty()) return "";
+      std::error_code ec;
+      if (!fs::is_regular_file(source, ec)) {
+        report.warnings.push_back("hotspot '" + h.id + "': media file not found: " + source);
+        return "";
+      }
+      const std::string name = media_name(h.id, suffix, source);
+      const std::string data = read_binary_file(source);
+      if (options.offline_images)
+        package.add(name.substr(0, name.rfind('.')) + ".js",
+                    asset_script(name, mime_type(name), std::vector<unsigned char>(data.begin(), data.end())));
+      package.add(name, data);
+      return name;
+    };
+    m.media = copy_media(h.media, "");
+    if (action_uses_media(h.action)) m.action_media = copy_media(h.action_target, "_action");
+    media.push_back(m);
+  }
+
+  report_progress(0.9, "tour description");
+  const nlohmann::json tour = make_tour_json(project, images, media, full_width, preview_width);
+  package.add("tour.json", tour.dump(1) + "\n");
+  // The same data as a script: browsers refuse fetch() of file:// URLs, but load scripts.
+  package.add("tour.js", "window.PLENOPATH_TOUR = " + tour.dump() + ";\n");
+  package.add("plan.svg", plan_svg(project.plan));
+  for (const EmbeddedFile& f : player_assets())
+    package.add(f.name, std::string(reinterpret_cast<const char*>(f.data), f.size));
+  if (options.pannellum) package.add("pannellum.json", pannellum_config(project, images).dump(1) + "\n");
+  if (options.geojson) package.add("path.geojson", path_geojson(project).dump(1) + "\n");
+
+  report_progress(0.95, "writing package");
+  for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);
+  report.package_bytes = package.write(options.output);
+  report.keyframes = static_cast<int>(images.size());
+  report_progress(1.0, "done");
+  return report;
+}
+
+}  // namespace plenopath

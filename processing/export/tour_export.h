@@ -1,0 +1,56 @@
+#pragma once
+// Exports a project as a packaged walkthrough: a folder (or .zip) holding tour.json (schema:
+// resources/player/tour.schema.json), keyframe images at two resolutions, hotspot media, the plan as SVG
+// and the web player, which works offline from file:// or from any static server.
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "model/project.h"
+
+namespace plenopath {
+
+constexpr int kTourFormatVersion = 1;
+constexpr const char* kTourFormatName = "plenopath-tour";
+
+struct TourExportOptions {
+  std::string output;             // a folder, or a file whose name ends in .zip
+  int max_size = 4096;            // full keyframe width cap, pixels (never upscaled)
+  int preview_size = 1024;        // preview keyframe width, pixels (loads first)
+  int jpeg_quality = 85;          // 1..100
+  bool pannellum = false;         // also write pannellum.json (one scene per keyframe, linked along the path)
+  bool geojson = false;           // also write path.geojson in WGS84 (needs a valid geo-anchor)
+  // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
+  // script holding it as a data URI. Off only for packages that will always be served over http.
+  bool offline_images = true;
+  void check() const;             // throws Error naming the bad field
+  static TourExportOptions from_project(const Project& project, const std::string& output);
+};
+
+struct TourExportReport {
+  std::string output;
+  int keyframes = 0;
+  int capture_frames = 0;
+  std::uintmax_t package_bytes = 0;      // total size of the folder's files, or of the .zip
+  std::vector<std::string> files;        // package-relative paths written
+  std::vector<std::string> warnings;     // e.g. missing hotspot media
+};
+
+// Called with the fraction done and a short stage name; return false to cancel (export_tour then throws
+// Error("export cancelled") and leaves no partial package behind).
+using ExportProgress = std::function<bool(double fraction, const std::string& stage)>;
+
+// Throws Error with a clear message: no path or keyframes, unreadable frames, unwritable output, ...
+TourExportReport export_tour(const Project& project, const TourExportOptions& options,
+                             const ExportProgress& progress = {});
+
+// The parts a tour.json holds, read back into a Project (plan lines, path, keyframes, cells, hotspots,
+// geo-anchor, title). For round-trip tests and for re-importing a published tour.
+Project project_from_tour_json(const nlohmann::json& tour, const std::string& file_for_errors);
+
+// The SVG of the plan (y flipped so that +Y is up on screen), one <g> per layer, occluders drawn heavier.
+std::string plan_svg(const FloorPlan& plan);
+
+}  // namespace plenopath

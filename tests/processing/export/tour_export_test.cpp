@@ -1,0 +1,339 @@
+// The tour package: contents, tour.json round trip, images against the source frames, interop files against
+// hand-computed values, safety of paths inside the package, and failure modes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "model/error.h"
+#include "model/json_reader.h"
+#include "processing/export/tour_export.h"
+#include "processing/export/tour_interop.h"
+#include "processing/export/zip_writer.h"
+#include "rig/synthetic_camera.h"
+
+namespace plenopath {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path test_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("plenopath_export_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A small rendered capture of the office sample with keyframes, hotspots and a geo-anchor.
+Project make_rendered_project(const fs::path& dir, int frame_count = 12) {
+  Project p;
+  p.plan = make_office_sample_plan();
+  p.tour.title = "Export test <b>tour</b>";
+  CameraPath walk = auto_walk(p.plan);
+  walk.frames.resize(std::min<std::size_t>(walk.frames.size(), frame_count));
+  const SyntheticScene scene = build_synthetic_scene(p.plan);
+  RenderOptions render;
+  render.width = 256;
+  render.height = 128;
+  render.depth = false;
+  fs::create_directories(dir / "frames");
+  for (PathFrame& f : walk.frames) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.png", f.index);
+    cv::imwrite((dir / "frames" / name).string(), render_panorama(scene, f, render).rgb);
+    f.file = std::string("frames/") + name;
+    p.capture.frame_names.push_back(name);
+  }
+  p.path = walk;
+  p.capture.kind = CaptureKind::kImageFolder;
+  p.capture.source = (dir / "frames").string();
+  p.capture.frame_count = static_cast<int>(walk.frames.size());
+  p.capture.width = render.width;
+  p.capture.height = render.height;
+  p.capture.camera_height_m = 1.6;
+  p.keyframes.indices = {0, 5, frame_count - 1};
+  p.keyframes.rank = {0, 2, 1};
+  p.visibility.cells = {{0, 5, 0.0, 0.4, 0.4, 20.0, 21.0}, {5, frame_count - 1, 0.4, 0.8, 0.4, 30.0, 29.0}};
+
+  const PathFrame& f0 = walk.frames.front();
+  const Eigen::Vector2d ahead = f0.position() + 2.0 * Eigen::Vector2d(std::cos(f0.heading), std::sin(f0.heading));
+  const Eigen::Vector2d side(-std::sin(f0.heading), std::cos(f0.heading));
+  cv::imwrite((dir / "poster.png").string(), cv::Mat(32, 48, CV_8UC3, cv::Scalar(0, 0, 255)));
+  Hotspot tv;
+  tv.id = "../../tv screen";  // an id that would escape the package if used as a path
+  tv.kind = HotspotKind::kMovieTexture;
+  tv.title = "<img src=x onerror=alert(1)>";
+  tv.media = (dir / "poster.png").string();
+  tv.frame = 0;
+  for (auto [u, z] : {std::pair{0.5, 2.0}, {-0.5, 2.0}, {-0.5, 1.2}, {0.5, 1.2}}) {
+    const Eigen::Vector2d c = ahead + u * side;
+    tv.world_corners.emplace_back(c.x(), c.y(), z);
+  }
+  tv.action = "show_text";
+  tv.action_target = "It is a poster.";
+  Hotspot lift;
+  lift.id = "lift";
+  lift.kind = HotspotKind::kEvent;
+  lift.title = "Lift";
+  lift.media = (dir / "missing.mp4").string();  // missing media: a warning, not a failure
+  lift.frame = 5;
+  lift.image_corners = {{0.1, 0.2}, {0.3, 0.2}, {0.3, -0.1}, {0.1, -0.1}};
+  lift.action = "jump";
+  lift.action_target = "11";
+  p.hotspots = {tv, lift};
+  p.geo = {true, 48.0, 2.0, 35.0, 0.0, 1.0, {0.0, 0.0}};
+  return p;
+}
+
+class TourExportTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test_dir("suite"));
+    project_ = new Project(make_rendered_project(*dir_));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete project_;
+    delete dir_;
+  }
+  static fs::path* dir_;
+  static Project* project_;
+};
+fs::path* TourExportTest::dir_ = nullptr;
+Project* TourExportTest::project_ = nullptr;
+
+TEST_F(TourExportTest, FolderHoldsEverythingThePlayerNeeds) {
+  TourExportOptions options;
+  options.output = (*dir_ / "package").string();
+  options.max_size = 200;
+  options.preview_size = 100;
+  options.pannellum = true;
+  options.geojson = true;
+  const TourExportReport report = export_tour(*project_, options);
+  EXPECT_EQ(report.keyframes, 3);
+  EXPECT_EQ(report.capture_frames, 12);
+  const fs::path out = options.output;
+  for (const char* f : {"index.html", "player.js", "player.css", "tour.json", "tour.js", "tour.schema.json",
+                        "plan.svg", "pannellum.json", "path.geojson", "images/k000000_full.jpg",
+                        "images/k000000_preview.jpg", "images/k000000_full.js", "images/k000005_preview.js"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+  std::uintmax_t total = 0;
+  for (const auto& e : fs::recursive_directory_iterator(out))
+    if (e.is_regular_file()) total += e.file_size();
+  EXPECT_EQ(report.package_bytes, total);
+
+  // Media: copied under media/ with a safe name; the missing one reported.
+  const nlohmann::json tour = read_json_file((out / "tour.json").string());
+  EXPECT_EQ(tour["hotspots"][0]["media"], "media/______tv_screen.png");
+  EXPECT_TRUE(fs::is_regular_file(out / "media/______tv_screen.png"));
+  EXPECT_EQ(tour["hotspots"][1]["media"], "");
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("missing.mp4"), std::string::npos);
+  for (const std::string& f : report.files) EXPECT_TRUE(is_safe_package_path(f)) << f;
+  // Titles stay plain strings (the player shows them with textContent).
+  EXPECT_EQ(tour["hotspots"][0]["title"], "<img src=x onerror=alert(1)>");
+  // Keyframes in progressive order (rank 0, 1, 2 = frames 0, 11, 5).
+  ASSERT_EQ(tour["keyframes"].size(), 3u);
+  EXPECT_EQ(tour["keyframes"][0]["frame"], 0);
+  EXPECT_EQ(tour["keyframes"][1]["frame"], 11);
+  EXPECT_EQ(tour["keyframes"][2]["frame"], 5);
+}
+
+TEST_F(TourExportTest, KeyframeImagesMatchTheSourceFrames) {
+  TourExportOptions options;
+  options.output = (*dir_ / "images_check").string();
+  options.max_size = 4096;  // larger than the capture: never upscaled
+  options.preview_size = 128;
+  options.jpeg_quality = 95;
+  export_tour(*project_, options);
+  for (int frame : {0, 5, 11}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%06d.png", frame);
+    const cv::Mat source = cv::imread((*dir_ / "frames" / name).string());
+    std::snprintf(name, sizeof name, "images/k%06d_full.jpg", frame);
+    const cv::Mat full = cv::imread((fs::path(options.output) / name).string());
+    ASSERT_EQ(full.size(), source.size());
+    EXPECT_GT(cv::PSNR(full, source), 30.0) << frame;
+    std::snprintf(name, sizeof name, "images/k%06d_preview.jpg", frame);
+    const cv::Mat preview = cv::imread((fs::path(options.output) / name).string());
+    ASSERT_EQ(preview.size(), cv::Size(128, 64));
+    cv::Mat reduced;
+    cv::resize(source, reduced, preview.size(), 0, 0, cv::INTER_AREA);
+    EXPECT_GT(cv::PSNR(preview, reduced), 28.0) << frame;
+  }
+}
+
+TEST_F(TourExportTest, TourJsonRoundTrips) {
+  TourExportOptions options;
+  options.output = (*dir_ / "roundtrip").string();
+  options.max_size = 128;
+  options.preview_size = 64;
+  export_tour(*project_, options);
+  const std::string file = (fs::path(options.output) / "tour.json").string();
+  const Project back = project_from_tour_json(read_json_file(file), file);
+  const Project& p = *project_;
+  EXPECT_EQ(back.tour.title, p.tour.title);
+  ASSERT_EQ(back.path.size(), p.path.size());
+  for (std::size_t i = 0; i < p.path.size(); ++i) {
+    EXPECT_EQ(back.path.frames[i].index, p.path.frames[i].index);
+    EXPECT_EQ(back.path.frames[i].x, p.path.frames[i].x);
+    EXPECT_EQ(back.path.frames[i].y, p.path.frames[i].y);
+    EXPECT_NEAR(back.path.frames[i].heading, p.path.frames[i].heading, 1e-12);
+  }
+  EXPECT_EQ(back.keyframes.indices, p.keyframes.indices);
+  EXPECT_EQ(back.keyframes.rank, p.keyframes.rank);
+  EXPECT_EQ(back.visibility.cells, p.visibility.cells);
+  ASSERT_EQ(back.plan.segments.size(), p.plan.segments.size());
+  for (std::size_t i = 0; i < p.plan.segments.size(); ++i) {
+    EXPECT_EQ(back.plan.segments[i].a, p.plan.segments[i].a);
+    EXPECT_EQ(back.plan.segments[i].b, p.plan.segments[i].b);
+    EXPECT_EQ(back.plan.segments[i].layer, p.plan.segments[i].layer);
+    EXPECT_EQ(back.plan.segments[i].occluder, p.plan.segments[i].occluder);
+  }
+  ASSERT_EQ(back.hotspots.size(), 2u);
+  EXPECT_EQ(back.hotspots[0].world_corners, p.hotspots[0].world_corners);
+  EXPECT_EQ(back.hotspots[1].action_target, "11");
+  ASSERT_EQ(back.hotspots[1].image_corners.size(), 4u);
+  EXPECT_LT((back.hotspots[1].image_corners[2] - p.hotspots[1].image_corners[2]).norm(), 1e-12);
+  EXPECT_TRUE(back.geo.valid);
+  EXPECT_EQ(back.geo.latitude_deg, 48.0);
+}
+
+TEST_F(TourExportTest, TourJsonValidatesAgainstTheSchema) {
+  TourExportOptions options;
+  options.output = (*dir_ / "schema").string();
+  options.max_size = 128;
+  options.preview_size = 64;
+  export_tour(*project_, options);
+  const std::string cmd = "/usr/bin/python3 -c \"import json,jsonschema,sys; "
+                          "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+                          options.output + "/tour.json' '" + options.output + "/tour.schema.json'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  // And a broken document is rejected by the same schema.
+  nlohmann::json bad = read_json_file(options.output + "/tour.json");
+  bad["keyframes"][0]["preview"] = "../../etc/passwd";
+  std::ofstream(options.output + "/bad.json") << bad.dump();
+  const std::string bad_cmd = "/usr/bin/python3 -c \"import json,jsonschema,sys; "
+                              "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+                              options.output + "/bad.json' '" + options.output + "/tour.schema.json' 2>/dev/null";
+  EXPECT_NE(std::system(bad_cmd.c_str()), 0);
+}
+
+TEST_F(TourExportTest, ZipPackageIsReadableByAnIndependentUnzip) {
+  TourExportOptions options;
+  options.output = (*dir_ / "tour.zip").string();
+  options.max_size = 128;
+  options.preview_size = 64;
+  const TourExportReport report = export_tour(*project_, options);
+  EXPECT_EQ(report.package_bytes, fs::file_size(options.output));
+  const std::string cmd = "/usr/bin/python3 -c \"import zipfile,sys; z=zipfile.ZipFile(sys.argv[1]); "
+                          "assert z.testzip() is None; n=z.namelist(); assert 'tour.json' in n and 'index.html' in n, n; "
+                          "assert len(n) == " + std::to_string(report.files.size()) + ", len(n)\" '" + options.output + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+}
+
+TEST_F(TourExportTest, CancelLeavesNoPackage) {
+  TourExportOptions options;
+  options.output = (*dir_ / "cancelled").string();
+  options.max_size = 128;
+  options.preview_size = 64;
+  int calls = 0;
+  EXPECT_THROW(export_tour(*project_, options, [&](double, const std::string&) { return ++calls < 3; }), Error);
+  EXPECT_FALSE(fs::exists(options.output));
+  EXPECT_FALSE(fs::exists(options.output + ".partial"));
+}
+
+TEST_F(TourExportTest, ClearErrors) {
+  TourExportOptions options;
+  options.output = (*dir_ / "errors").string();
+  Project p = *project_;
+  p.keyframes = {};
+  try {
+    export_tour(p, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no keyframes"), std::string::npos) << e.what();
+  }
+  p = *project_;
+  p.keyframes.indices.push_back(400);
+  p.keyframes.rank.push_back(3);
+  EXPECT_THROW(export_tour(p, options), Error);
+  options.jpeg_quality = 0;
+  EXPECT_THROW(export_tour(*project_, options), Error);
+  options = TourExportOptions{};
+  options.output = "/proc/no/such/place/tour.zip";
+  options.max_size = 128;
+  options.preview_size = 64;
+  EXPECT_THROW(export_tour(*project_, options), Error);
+}
+
+TEST(TourInterop, PannellumLinksPointAtTheNeighbours) {
+  // Keyframe A at the origin facing +X; B 1 m to its left (+Y): B lies at azimuth -90 deg (left).
+  Project p;
+  p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 0.0, 1.0, M_PI / 2, 1.0, 0, ""}};
+  p.keyframes.indices = {0, 1};
+  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", ""}, {1, "p1.jpg", "f1.jpg", "", ""}};
+  const nlohmann::json config = pannellum_config(p, images);
+  const auto& a = config["scenes"]["k0"]["hotSpots"];
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(a[0]["sceneId"], "k1");
+  EXPECT_NEAR(a[0]["yaw"].get<double>(), -90.0, 1e-9);
+  // From B (facing +Y), A lies behind (-Y): azimuth 180.
+  const auto& b = config["scenes"]["k1"]["hotSpots"];
+  EXPECT_NEAR(std::abs(b[0]["yaw"].get<double>()), 180.0, 1e-9);
+  EXPECT_EQ(config["default"]["firstScene"], "k0");
+  EXPECT_EQ(config["scenes"]["k0"]["panorama"], "f0.jpg");
+}
+
+TEST(TourInterop, GeoJsonPlacesThePathOnEarth) {
+  // At latitude 48 deg one degree of latitude is 111 190.3 m and one of longitude 74 625.2 m (meridian and
+  // parallel arc lengths on WGS84, hand-computed from the series 111132.954 - 559.822 cos 2phi + ...).
+  Project p;
+  p.geo = {true, 48.0, 2.0, 0.0, 0.0, 1.0, {0.0, 0.0}};
+  p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 0.0, 111.1903, 0.0, 1.0, 0, ""},
+                   {2, "", 74.6252, 0.0, 0.0, 1.0, 0, ""}};
+  p.keyframes.indices = {0, 1};
+  const nlohmann::json g = path_geojson(p);
+  const auto& line = g["features"][0]["geometry"]["coordinates"];
+  EXPECT_NEAR(line[0][0].get<double>(), 2.0, 1e-9);
+  EXPECT_NEAR(line[0][1].get<double>(), 48.0, 1e-9);
+  EXPECT_NEAR(line[1][1].get<double>(), 48.001, 2e-7);  // 111.19 m north
+  EXPECT_NEAR(line[1][0].get<double>(), 2.0, 1e-9);
+  EXPECT_NEAR(line[2][0].get<double>(), 2.001, 2e-7);  // 74.63 m east
+  EXPECT_EQ(g["features"].size(), 3u);                    // the line and two keyframes
+  // A plan rotated by 90 deg: plan +X points north.
+  p.geo.plan_rotation = M_PI / 2;
+  const nlohmann::json r = path_geojson(p);
+  EXPECT_NEAR(r["features"][0]["geometry"]["coordinates"][2][1].get<double>(), 48.0 + 74.6252 / 111190.3, 2e-7);
+  p.geo.valid = false;
+  EXPECT_THROW(path_geojson(p), Error);
+}
+
+TEST(ZipWriter, CrcMatchesKnownValuesAndPathsAreChecked) {
+  EXPECT_EQ(crc32_of("123456789"), 0xCBF43926u);  // the standard CRC-32 check value
+  EXPECT_EQ(crc32_of(""), 0u);
+  EXPECT_TRUE(is_safe_package_path("images/k000001_full.jpg"));
+  for (const char* bad : {"../x", "a/../../x", "/etc/passwd", "a\\b", "C:evil", "a//b", "a/", ""})
+    EXPECT_FALSE(is_safe_package_path(bad)) << bad;
+  const fs::path dir = test_dir("zip");
+  EXPECT_THROW(write_zip_file((dir / "x.zip").string(), {{"../escape.txt", "x"}}), Error);
+  EXPECT_FALSE(fs::exists(dir / "x.zip"));
+}
+
+TEST(PlanSvg, EscapesTextAndFlipsY) {
+  FloorPlan plan;
+  plan.segments = {{{0, 0}, {2, 1}, "WALLS", true}};
+  plan.labels = {{{1, 1}, "A & <B>", 0.3, "TEXT"}};
+  const std::string svg = plan_svg(plan);
+  EXPECT_NE(svg.find("A &amp; &lt;B&gt;"), std::string::npos);
+  EXPECT_NE(svg.find("y2=\"-1.000000\""), std::string::npos);
+  EXPECT_EQ(svg.find("<B>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace plenopath
