@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <opencv2/core/utility.hpp>
 #include <functional>
 #include <set>
@@ -132,6 +133,7 @@ struct Crossing {
   double u;           // texture coordinate along the surface, metres
   float top;          // height of the face's top
   float cos_incidence;  // |normal . horizontal ray direction|
+  float spread;         // 1 / sqrt(cos_incidence), clamped: how much wider a pixel's footprint is on the face
   int face;           // index into scene.faces, or -1 - person
   int footprint;      // footprint toggled by crossing this face (furniture: index; person: nfoot + p), -1 none
   SurfaceKind kind;
@@ -193,8 +195,9 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     const double s = cross(w, dir) / denom;
     if (s < 0.0 || s > 1.0) continue;
     const double len = e.norm();
-    ray.crossings.push_back({t, s * len + f.u_offset, static_cast<float>(f.top),
-                             static_cast<float>(std::abs(denom) / len), static_cast<int>(i), f.footprint, f.kind});
+    const float incidence = static_cast<float>(std::abs(denom) / len);
+    ray.crossings.push_back({t, s * len + f.u_offset, static_cast<float>(f.top), incidence,
+                             1.0f / std::sqrt(std::max(incidence, 0.02f)), static_cast<int>(i), f.footprint, f.kind});
   }
   const int nfoot = static_cast<int>(ctx.scene->footprints.size());
   for (std::size_t p = 0; p < ctx.people.size(); ++p) {
@@ -211,8 +214,10 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
       return (std::atan2(q.y(), q.x()) + kPi) * person.radius;
     };
     const int id = -1 - static_cast<int>(p);
-    if (t1 > 0) ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), static_cast<float>(root / person.radius), id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
-    ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), static_cast<float>(root / person.radius), id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+    const float incidence = static_cast<float>(root / person.radius);
+    const float spread = 1.0f / std::sqrt(std::max(incidence, 0.02f));
+    if (t1 > 0) ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+    ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
   }
   std::sort(ray.crossings.begin(), ray.crossings.end(), [](const Crossing& a, const Crossing& b) { return a.d < b.d; });
   for (std::size_t i = 0; i < ray.crossings.size(); ++i)
@@ -222,6 +227,20 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     }
 }
 
+// What every ray of one panorama row (one elevation) shares.
+struct RayRow {
+  double s = 0.0;       // tan(elevation): height gained per horizontal metre
+  double inv_s = 0.0;   // 1 / s (0 when s == 0)
+  double cos_e = 1.0, sin_e = 0.0, sec_e = 1.0;
+  double floor_spread = 1.0;  // 1 / sqrt(|sin e|), clamped: footprint growth on horizontal surfaces
+  double wall_spread = 1.0;   // 1 / sqrt(cos e), clamped: footprint growth on vertical surfaces
+  explicit RayRow(double slope, double cos_elevation, double sin_elevation)
+      : s(slope), inv_s(slope != 0.0 ? 1.0 / slope : 0.0), cos_e(cos_elevation), sin_e(sin_elevation),
+        sec_e(1.0 / std::max(cos_elevation, 1e-300)),
+        floor_spread(1.0 / std::sqrt(std::max(std::abs(sin_elevation), 0.02))),
+        wall_spread(1.0 / std::sqrt(std::max(cos_elevation, 0.02))) {}
+};
+
 struct Hit {
   double d = 0.0;  // horizontal distance
   SurfaceKind kind = SurfaceKind::kNone;
@@ -230,14 +249,15 @@ struct Hit {
 };
 
 // The first surface met by the ray of slope s (= tan elevation) along the column.
-inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, double s) {
+inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, const RayRow& row) {
+  const double s = row.s;
   const double cam_z = ctx.cam_z;
   const double ceiling_z = ctx.scene->options.wall_height;
   int inside = ctx.start_footprint;
   auto horizontal = [&](double limit, Hit& hit) {
     if (s < 0) {
       const double level = inside >= 0 ? ctx.footprint_tops[inside] : 0.0;
-      const double dh = (cam_z - level) / -s;
+      const double dh = (level - cam_z) * row.inv_s;
       if (dh < limit) {
         hit.d = dh;
         hit.footprint = inside;
@@ -246,7 +266,7 @@ inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, double s) {
         return true;
       }
     } else if (s > 0) {
-      const double dc = (ceiling_z - cam_z) / s;
+      const double dc = (ceiling_z - cam_z) * row.inv_s;
       if (dc < limit) {
         hit.d = dc;
         hit.kind = SurfaceKind::kCeiling;
@@ -279,47 +299,59 @@ inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, double s) {
 }
 
 // ---- texturing
+// Bilinear sample at continuous texel coordinates of one level (texel (i, j) has its centre at
+// (i + 0.5, j + 0.5)), in fixed point: 8-bit weights.
+inline long long fast_floor(double x) {
+  const long long i = static_cast<long long>(x);
+  return x < static_cast<double>(i) ? i - 1 : i;
+}
+
 inline cv::Vec3f sample_bilinear(const cv::Mat& img, double x, double y, bool periodic) {
-  // (x, y) in this level's texels; texel (i, j) has its centre at (i + 0.5, j + 0.5).
-  x -= 0.5;
-  y -= 0.5;
-  const double fx0 = std::floor(x), fy0 = std::floor(y);
-  const float ax = static_cast<float>(x - fx0), ay = static_cast<float>(y - fy0);
-  long x0 = static_cast<long>(fx0), y0 = static_cast<long>(fy0);
-  long x1 = x0 + 1, y1 = y0 + 1;
-  const long w = img.cols, h = img.rows;
+  x = std::clamp(x, -1e15, 1e15) - 0.5;
+  y = std::clamp(y, -1e15, 1e15) - 0.5;
+  const long long xf = fast_floor(x), yf = fast_floor(y);
+  const int ax = static_cast<int>((x - static_cast<double>(xf)) * 256.0);
+  const int ay = static_cast<int>((y - static_cast<double>(yf)) * 256.0);
+  const int w = img.cols, h = img.rows;
+  int x0, y0, x1, y1;
   if (periodic) {  // power-of-two sizes
-    x0 &= w - 1;
-    x1 &= w - 1;
-    y0 &= h - 1;
-    y1 &= h - 1;
+    x0 = static_cast<int>(xf & (w - 1));
+    x1 = static_cast<int>((xf + 1) & (w - 1));
+    y0 = static_cast<int>(yf & (h - 1));
+    y1 = static_cast<int>((yf + 1) & (h - 1));
   } else {
-    x0 = std::clamp(x0, 0L, w - 1);
-    x1 = std::clamp(x1, 0L, w - 1);
-    y0 = std::clamp(y0, 0L, h - 1);
-    y1 = std::clamp(y1, 0L, h - 1);
+    x0 = static_cast<int>(std::clamp<long long>(xf, 0, w - 1));
+    x1 = static_cast<int>(std::clamp<long long>(xf + 1, 0, w - 1));
+    y0 = static_cast<int>(std::clamp<long long>(yf, 0, h - 1));
+    y1 = static_cast<int>(std::clamp<long long>(yf + 1, 0, h - 1));
   }
-  const uchar* r0 = img.ptr<uchar>(static_cast<int>(y0));
-  const uchar* r1 = img.ptr<uchar>(static_cast<int>(y1));
+  const uchar* r0 = img.data + static_cast<std::size_t>(y0) * img.step[0];
+  const uchar* r1 = img.data + static_cast<std::size_t>(y1) * img.step[0];
   const uchar* p00 = r0 + 3 * x0;
   const uchar* p01 = r0 + 3 * x1;
   const uchar* p10 = r1 + 3 * x0;
   const uchar* p11 = r1 + 3 * x1;
-  const float w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
-  return {w00 * p00[0] + w01 * p01[0] + w10 * p10[0] + w11 * p11[0],
-          w00 * p00[1] + w01 * p01[1] + w10 * p10[1] + w11 * p11[1],
-          w00 * p00[2] + w01 * p01[2] + w10 * p10[2] + w11 * p11[2]};
+  const int bx = 256 - ax, by = 256 - ay;
+  cv::Vec3f out;
+  for (int k = 0; k < 3; ++k) {
+    const int top = p00[k] * bx + p01[k] * ax;
+    const int bottom = p10[k] * bx + p11[k] * ax;
+    out[k] = static_cast<float>((top * by + bottom * ay) >> 16);
+  }
+  return out;
 }
 
-// Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel.
+// Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel:
+// the level whose texels are about the pixel's footprint.
 inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
   int level = 0;
-  if (footprint > 1.0) {
-    int e;
-    std::frexp(footprint, &e);  // footprint in [2^(e-1), 2^e)
-    level = std::min(e - 1, static_cast<int>(t.levels.size()) - 1);
+  if (footprint >= 2.0) {
+    const float f = static_cast<float>(footprint);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    level = std::min(static_cast<int>((bits >> 23) & 0xff) - 127, static_cast<int>(t.levels.size()) - 1);
   }
-  const double scale = std::ldexp(1.0, -level);
+  const double scale = 1.0 / static_cast<double>(1 << level);
   return sample_bilinear(t.levels[level], x * scale, y * scale, periodic);
 }
 
@@ -331,8 +363,9 @@ const cv::Vec3b kSky(235, 206, 160);
 
 // Colour of a hit. pixel_angle: the angular size of a pixel (radians), for mip selection; distance: along
 // the 3-D ray; cos_e: cosine of the ray's elevation; sin_e: its sine.
-cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, double s, double distance,
-                double pixel_angle, double cos_e, double sin_e) {
+cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, const RayRow& row, double distance,
+                double pixel_angle) {
+  const double s = row.s;
   const SyntheticScene& scene = *ctx.scene;
   const SceneTextures& tex = *scene.textures;
   const double tpm = tex.texels_per_metre;
@@ -346,7 +379,7 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, d
     case SurfaceKind::kCeiling:
     case SurfaceKind::kFurnitureTop: {
       const Eigen::Vector2d p = ray.origin + hit.d * ray.dir;
-      const double footprint = base_footprint / std::sqrt(std::max(std::abs(sin_e), 0.02));
+      const double footprint = base_footprint * row.floor_spread;
       if (hit.kind == SurfaceKind::kFurnitureTop) {
         const SceneFootprint& fp = scene.footprints[hit.footprint];
         const cv::Vec3f c = sample_texture(tex.materials[kMaterialFurnitureTop], (p.x() + fp.texture_offset.x()) * tpm,
@@ -365,7 +398,7 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, d
         colour = cv::Vec3f(60, 70, 90);
         break;
       }
-      const double footprint = base_footprint / std::sqrt(std::max<double>(hit.crossing->cos_incidence * cos_e, 0.02));
+      const double footprint = base_footprint * hit.crossing->spread * row.wall_spread;
       const cv::Vec3f c = sample_texture(tex.materials[kMaterialCloth], hit.crossing->u * tpm, (2.0 - z) * tpm, footprint, true);
       if (z > 1.5)
         colour = cv::Vec3f(110, 140, 190) + 0.2f * c;  // face and hair
@@ -379,7 +412,7 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, d
     default: {  // walls, pillars, furniture sides
       const Crossing& c = *hit.crossing;
       const SceneFace& f = scene.faces[c.face];
-      const double footprint = base_footprint / std::sqrt(std::max<double>(c.cos_incidence * cos_e, 0.02));
+      const double footprint = base_footprint * c.spread * row.wall_spread;
       for (int i = f.poster_begin; i < f.poster_end; ++i) {
         const ScenePoster& p = scene.posters[i];
         if (c.u >= p.u0 && c.u <= p.u1 && z >= p.z0 && z <= p.z1) {
@@ -553,6 +586,13 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
 
 // ---- rendering
 RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options) {
+  RenderedPanorama out;
+  render_panorama(scene, pose, options, out);
+  return out;
+}
+
+void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options,
+                     RenderedPanorama& out) {
   if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
   if (!scene.textures) throw Error("render_panorama: the scene was not built with build_synthetic_scene");
   const int w = options.width, h = options.height;
@@ -575,26 +615,27 @@ RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& p
     }
   });
 
-  RenderedPanorama out;
   out.rgb.create(h, w, CV_8UC3);
-  if (options.depth) out.depth.create(h, w, CV_32F);
+  if (options.depth)
+    out.depth.create(h, w, CV_32F);
+  else
+    out.depth.release();
   const double pixel_angle = 2.0 * kPi / w;
   run(cv::Range(0, h), stripes * 8, [&](const cv::Range& r) {
     for (int v = r.start; v < r.end; ++v) {
       const double elevation = kPi / 2.0 - (v + 0.5) / h * kPi;
-      const double s = std::tan(elevation), cos_e = std::cos(elevation), sin_e = std::sin(elevation);
+      const RayRow row(std::tan(elevation), std::cos(elevation), std::sin(elevation));
       cv::Vec3b* rgb = out.rgb.ptr<cv::Vec3b>(v);
       float* depth = options.depth ? out.depth.ptr<float>(v) : nullptr;
       for (int u = 0; u < w; ++u) {
-        const Hit hit = first_hit(ctx, columns[u], s);
-        const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / cos_e;
-        rgb[u] = shade(ctx, columns[u], hit, s, distance, pixel_angle, cos_e, sin_e);
+        const Hit hit = first_hit(ctx, columns[u], row);
+        const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d * row.sec_e;
+        rgb[u] = shade(ctx, columns[u], hit, row, distance, pixel_angle);
         if (depth) depth[u] = static_cast<float>(distance);
       }
     }
   });
   add_noise(out.rgb, options, pose.index);
-  return out;
 }
 
 RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
@@ -628,15 +669,16 @@ RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, con
     }
     result.distance = dist;
     result.kind = hit.kind;
-    result.bgr = shade(ctx, ray, hit, 0.0, dist, pixel_angle, 1e-9, sin_e);
+    result.bgr = shade(ctx, ray, hit, RayRow(0.0, 0.0, sin_e), dist, pixel_angle);
     return result;
   }
   cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray);
   const double s = d.z() / horizontal;
-  const Hit hit = first_hit(ctx, ray, s);
+  const RayRow row(s, cos_e, sin_e);
+  const Hit hit = first_hit(ctx, ray, row);
   result.kind = hit.kind;
   result.distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
-  result.bgr = shade(ctx, ray, hit, s, result.distance, pixel_angle, cos_e, sin_e);
+  result.bgr = shade(ctx, ray, hit, row, result.distance, pixel_angle);
   return result;
 }
 

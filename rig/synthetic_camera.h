@@ -124,6 +124,9 @@ struct RenderedPanorama {
 // deterministic function of the scene, the pose (including pose.index, which times people, noise and drift)
 // and the options; thread count does not change it.
 RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options);
+// Same, reusing `out`'s buffers when their size fits (saves page faults when rendering many frames).
+void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options,
+                     RenderedPanorama& out);
 
 // One ray, for rigs and tests: origin and direction in the plan frame (direction need not be unit).
 struct RayHit {

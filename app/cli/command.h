@@ -18,6 +18,7 @@ struct Command {
 };
 
 // One line per subcommand; keep alphabetical. Each lives in command_<name>.cpp.
+Command add_capture_info_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
 
 }  // namespace plenopath::cli

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   std::vector<Command> commands = {
+      add_capture_info_command(app),
       add_info_command(app),
   };
 
