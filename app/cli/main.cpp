@@ -12,7 +12,9 @@ int main(int argc, char** argv) {
 
   std::vector<Command> commands = {
       add_capture_info_command(app),
+      add_eval_path_command(app),
       add_info_command(app),
+      add_track_command(app),
   };
 
   try {

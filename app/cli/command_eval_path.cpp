@@ -1,0 +1,47 @@
+// `plenopath eval-path --estimate PATH.json --truth GT.json [--json]`: frames matched by index, a 2-D
+// similarity alignment without reflection (Umeyama), then heading RMS and absolute trajectory error.
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/cli/command.h"
+#include "model/path_io.h"
+#include "processing/egomotion/path_evaluation.h"
+
+namespace plenopath::cli {
+
+Command add_eval_path_command(CLI::App& parent) {
+  struct Options {
+    std::string estimate, truth;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = parent.add_subcommand("eval-path", "Score an estimated camera path against ground truth");
+  sub->add_option("--estimate", options->estimate, "Estimated path file (JSON)")->required();
+  sub->add_option("--truth", options->truth, "Ground-truth path file (JSON)")->required();
+  sub->add_flag("--json", options->json, "Machine-readable output");
+  return {sub, [options]() {
+            const CameraPath estimate = read_path_file(options->estimate);
+            const CameraPath truth = read_path_file(options->truth);
+            const PathErrors e = evaluate_path(estimate, truth);
+            const nlohmann::json j = {{"frames_matched", e.frames_matched},
+                                      {"rot_rms_deg", e.rot_rms_deg},
+                                      {"rot_max_deg", e.rot_max_deg},
+                                      {"ate_rms_m", e.ate_rms_m},
+                                      {"ate_max_m", e.ate_max_m},
+                                      {"ate_pct", e.ate_pct},
+                                      {"truth_length_m", e.truth_length_m},
+                                      {"scale_error_pct", e.scale_error_pct}};
+            if (options->json) {
+              std::cout << j.dump(2) << "\n";
+            } else {
+              std::cout << std::fixed << std::setprecision(4) << e.frames_matched << " frames matched; heading RMS "
+                        << e.rot_rms_deg << " deg; ATE " << e.ate_rms_m << " m RMS (" << e.ate_pct
+                        << " % of " << e.truth_length_m << " m); scale error " << e.scale_error_pct << " %\n";
+            }
+            return kExitOk;
+          }};
+}
+
+}  // namespace plenopath::cli

@@ -1,0 +1,91 @@
+#pragma once
+// The camera path from the panoramas alone (seed paper §4, issue 5), COLMAP-controller style: options with
+// defaults and check(), a streaming add_frame() (ring image + KLT per frame, so frames are read once) and
+// finish() that runs the geometric steps with a progress/cancel callback:
+//   1. coarse headings from ring images (ring_heading.h);
+//   2. keyframes ("chunks": cut when the scene has moved enough or the heading has turned), the direction
+//      of each step by planar two-view RANSAC on bearings, its length by bearing-only resection against the
+//      points triangulated so far, chained into (x, y);
+//   3. Ceres refinement of keyframe poses and points (path_refinement.h), then every other frame resected
+//      against the refined points;
+//   4. metric scale from the camera height (floor points lie at -h) or a known distance, else relative;
+//   5. frames that cannot be trusted are flagged with a reason (model/camera_path.h FrameFlag).
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "model/camera_path.h"
+#include "processing/egomotion/klt_tracks.h"
+#include "processing/egomotion/path_refinement.h"
+#include "processing/egomotion/planar_two_view.h"
+#include "processing/egomotion/ring_heading.h"
+
+namespace plenopath {
+
+struct EgomotionOptions {
+  RingOptions ring;
+  KltOptions klt;
+  PlanarTwoViewOptions two_view;
+  RefinementOptions refinement;
+  double keyframe_parallax_deg = 2.0;   // median rotation-free parallax since the last keyframe that makes one
+  double keyframe_max_turn_deg = 8.0;   // heading change since the last keyframe that cuts a chunk
+  double keyframe_min_shared = 0.5;     // fraction of the last keyframe's tracks still seen; below it, cut
+  double min_triangulation_deg = 1.0;   // rays of a point must span at least this angle
+  double max_initial_error_deg = 1.0;   // observations this far off after initialisation are dropped
+  int resection_min_points = 12;        // fewer points seen: the frame's pose is bridged (interpolated)
+  // Metric scale, in order of preference: the camera's height above the floor, or a distance between two
+  // frames the author knows. Neither: relative scale (first keyframe step = 1).
+  double camera_height_m = 0.0;
+  int scale_frame_a = -1, scale_frame_b = -1;
+  double scale_distance_m = 0.0;
+  // Flags.
+  int textureless_corners = 60;         // fewer live corners than this: textureless
+  double duplicate_flow_px = 0.08;      // median track motion below this (and no turn): duplicate / stopped
+  double jump_factor = 6.0;             // a step this many times the local median step: jump
+  double moving_outlier_fraction = 0.3; // this share of a frame's tracks inconsistent with the scene: moving objects
+  std::uint32_t seed = 1;
+  std::string check() const;            // empty when valid
+};
+
+struct EgomotionResult {
+  CameraPath path;                     // one pose per frame, headings radians; frame 0 at (0, 0), heading 0
+  std::vector<double> ring_headings;   // step 1's headings per frame (radians, frame 0 = 0)
+  std::vector<Eigen::Vector3d> coarse_poses;  // step 2's (x, y, heading) per frame, final scale
+  std::vector<int> keyframes;          // frame indices
+  int points = 0;
+  int observations = 0;
+  RefinementReport refinement;
+  std::string scale_source;            // "camera_height", "distance", or "relative"
+  double scale_factor = 1.0;           // metres per internal unit applied at the end
+  int floor_points = 0;                // points used for the camera-height scale
+  int flagged_frames = 0;
+  bool cancelled = false;
+  double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)
+  double seconds_geometry = 0;         // everything in finish()
+};
+
+// stage: "frames", "headings", "chaining", "refinement", "resection"; fraction of that stage in [0, 1].
+// Return false to cancel (finish() then returns with cancelled = true and what it has so far).
+using EgomotionCallback = std::function<bool(const std::string& stage, double fraction)>;
+
+class EgomotionTracker {
+ public:
+  explicit EgomotionTracker(const EgomotionOptions& options);  // throws Error on bad options
+  ~EgomotionTracker();
+  void add_frame(const cv::Mat& bgr);  // frames in capture order
+  int frame_count() const;
+  EgomotionResult finish(const EgomotionCallback& callback = {});
+
+  // Convenience: reads frame_count frames through `read` (whose time is not counted), then finishes.
+  static EgomotionResult run(int frame_count, const std::function<cv::Mat(int)>& read,
+                             const EgomotionOptions& options, const EgomotionCallback& callback = {});
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace plenopath

@@ -1,0 +1,153 @@
+#include "processing/egomotion/klt_tracks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <sstream>
+
+#include "model/error.h"
+#include "rig/spherical.h"
+
+namespace plenopath {
+
+std::string KltOptions::check() const {
+  std::ostringstream o;
+  if (work_width < 0 || (work_width > 0 && work_width < 64)) o << "work_width must be 0 or >= 64; ";
+  if (max_features < 20) o << "max_features must be >= 20; ";
+  if (min_features < 0 || min_features > max_features) o << "min_features must be in [0, max_features]; ";
+  if (!(quality_level > 0 && quality_level < 1)) o << "quality_level must be in (0, 1); ";
+  if (min_distance_px < 1) o << "min_distance_px must be >= 1; ";
+  if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
+  if (pyramid_levels < 0 || pyramid_levels > 6) o << "pyramid_levels must be in [0, 6]; ";
+  if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90)) o << "max_abs_elevation_deg must be in (10, 90]; ";
+  return o.str();
+}
+
+KltTracker::KltTracker(const KltOptions& options) : options_(options) {
+  const std::string problem = options.check();
+  if (!problem.empty()) throw Error("KLT options: " + problem);
+}
+
+Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
+  return equirect_to_bearing({o.x, o.y}, width_, height_);
+}
+
+cv::Mat KltTracker::prepare(const cv::Mat& frame) {
+  if (frame.empty()) throw Error("KLT: empty frame");
+  cv::Mat gray;
+  if (frame.channels() == 3) {
+    cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);
+  } else if (frame.channels() == 1) {
+    gray = frame;
+  } else {
+    throw Error("KLT: expected a 1- or 3-channel frame");
+  }
+  if (gray.depth() != CV_8U) gray.convertTo(gray, CV_8U);
+  const int target = options_.work_width > 0 ? std::min(options_.work_width, gray.cols) : gray.cols;
+  if (target != gray.cols) {
+    cv::Mat small;
+    cv::resize(gray, small, cv::Size(target, target / 2), 0, 0, cv::INTER_AREA);
+    gray = small;
+  }
+  if (width_ == 0) {
+    width_ = gray.cols;
+    height_ = gray.rows;
+    pad_ = (options_.window_px / 2 + 2) << options_.pyramid_levels;
+    pad_ = std::min(pad_, width_ / 2);
+  } else if (gray.cols != width_ || gray.rows != height_) {
+    throw Error("KLT: frame size changed within the capture");
+  }
+  return gray;
+}
+
+FrameTrackStats KltTracker::add_frame(const cv::Mat& frame) {
+  const cv::Mat gray = prepare(frame);
+  const int frame_index = frame_count_++;
+  // Wrap horizontally (the seam), replicate vertically (the poles are not tracked anyway).
+  cv::Mat padded;
+  cv::copyMakeBorder(gray, padded, 0, 0, pad_, pad_, cv::BORDER_WRAP);
+  cv::copyMakeBorder(padded, padded, pad_, pad_, 0, 0, cv::BORDER_REPLICATE);
+  const cv::Size window(options_.window_px, options_.window_px);
+  std::vector<cv::Mat> pyramid;
+  cv::buildOpticalFlowPyramid(padded, pyramid, window, options_.pyramid_levels, true);
+
+  FrameTrackStats stats;
+  const double max_elev = options_.max_abs_elevation_deg * M_PI / 180.0;
+  const double y_min = (M_PI / 2 - max_elev) / M_PI * height_, y_max = height_ - y_min;
+  std::vector<int> still_live;
+  if (!live_.empty() && !previous_pyramid_.empty()) {
+    std::vector<cv::Point2f> from, to, back;
+    for (int t : live_) {
+      const TrackObservation& o = tracks_[t].observations.back();
+      from.emplace_back(o.x + pad_, o.y + pad_);
+    }
+    std::vector<unsigned char> status, status_back;
+    std::vector<float> error;
+    const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, error, window, options_.pyramid_levels,
+                             term);
+    bool check_back = options_.forward_backward_px > 0;
+    if (check_back) {
+      back = from;
+      cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, status_back, error, window,
+                               options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
+    }
+    std::vector<double> flow;
+    for (size_t k = 0; k < live_.size(); ++k) {
+      bool ok = status[k] != 0;
+      if (ok && check_back) {
+        const float dx = back[k].x - from[k].x, dy = back[k].y - from[k].y;
+        ok = status_back[k] != 0 && dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
+      }
+      float x = to[k].x - pad_, y = to[k].y - pad_;
+      if (ok && (y < y_min || y > y_max)) ok = false;
+      if (!ok) {
+        ++stats.lost;
+        continue;
+      }
+      flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
+      x = std::fmod(x, static_cast<float>(width_));
+      if (x < 0) x += width_;
+      if (x >= width_) x -= width_;
+      tracks_[live_[k]].observations.push_back({frame_index, x, y});
+      still_live.push_back(live_[k]);
+    }
+    stats.tracked = static_cast<int>(still_live.size());
+    if (!flow.empty()) {
+      std::nth_element(flow.begin(), flow.begin() + flow.size() / 2, flow.end());
+      stats.median_flow_px = flow[flow.size() / 2];
+    }
+  }
+  live_ = still_live;
+
+  if (static_cast<int>(live_.size()) < options_.min_features) {
+    cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
+    mask.rowRange(static_cast<int>(std::ceil(y_min)), static_cast<int>(std::floor(y_max))).setTo(255);
+    for (int t : live_) {
+      const TrackObservation& o = tracks_[t].observations.back();
+      cv::circle(mask, cv::Point(cvRound(o.x), cvRound(o.y)), options_.min_distance_px, cv::Scalar(0), -1);
+    }
+    std::vector<cv::Point2f> corners;
+    const int wanted = options_.max_features - static_cast<int>(live_.size());
+    cv::goodFeaturesToTrack(gray, corners, wanted, options_.quality_level, options_.min_distance_px, mask, 5);
+    stats.corners_available = static_cast<int>(corners.size());
+    if (!corners.empty()) {
+      cv::cornerSubPix(gray, corners, cv::Size(3, 3), cv::Size(-1, -1),
+                       cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.02));
+    }
+    for (const cv::Point2f& c : corners) {
+      FeatureTrack t;
+      t.observations.push_back({frame_index, c.x, c.y});
+      tracks_.push_back(std::move(t));
+      live_.push_back(static_cast<int>(tracks_.size()) - 1);
+      ++stats.detected;
+    }
+  } else {
+    stats.corners_available = static_cast<int>(live_.size());
+  }
+  previous_pyramid_ = std::move(pyramid);
+  return stats;
+}
+
+}  // namespace plenopath

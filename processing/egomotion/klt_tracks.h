@@ -1,0 +1,66 @@
+#pragma once
+// Step 2's raw material: KLT feature tracks across an equirectangular sequence. Corners are found with
+// goodFeaturesToTrack and followed with pyramidal Lucas-Kanade on the panorama padded across the seam
+// (BORDER_WRAP), so a feature walking over azimuth +-180 keeps its track. Frames are tracked at a working
+// width (resized) and observations are kept as working-image pixels; bearing() turns them into unit
+// bearings in the camera frame (rig/spherical.h).
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace plenopath {
+
+struct KltOptions {
+  int work_width = 1024;          // frames are resized to this width for tracking (0 = keep the frame's)
+  int max_features = 700;         // corners kept alive at most
+  int min_features = 450;         // below this many live tracks, new corners are detected
+  double quality_level = 0.003;   // goodFeaturesToTrack quality (relative to the best corner)
+  int min_distance_px = 10;       // between corners, working pixels
+  int window_px = 21;             // Lucas-Kanade window
+  int pyramid_levels = 3;
+  double max_abs_elevation_deg = 72.0;  // corners nearer the poles are not used (stretched, few)
+  double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
+  std::string check() const;      // empty when valid
+};
+
+struct TrackObservation {
+  int frame = 0;
+  float x = 0.f, y = 0.f;  // working-image pixel coordinates (x in [0, width))
+};
+
+struct FeatureTrack {
+  std::vector<TrackObservation> observations;  // consecutive frames
+};
+
+struct FrameTrackStats {
+  int tracked = 0;            // tracks continued into this frame
+  int lost = 0;               // tracks that ended at the previous frame
+  int detected = 0;           // new corners started in this frame
+  int corners_available = 0;  // corners the detector found (after masking), a texture measure
+  double median_flow_px = 0;  // median displacement of continued tracks, working pixels
+};
+
+class KltTracker {
+ public:
+  explicit KltTracker(const KltOptions& options);
+  // Tracks into the next frame (BGR or gray, any size; equirectangular 2:1).
+  FrameTrackStats add_frame(const cv::Mat& frame);
+
+  const std::vector<FeatureTrack>& tracks() const { return tracks_; }
+  int frame_count() const { return frame_count_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Eigen::Vector3d bearing(const TrackObservation& o) const;
+
+ private:
+  cv::Mat prepare(const cv::Mat& frame);
+  KltOptions options_;
+  int width_ = 0, height_ = 0, pad_ = 0;
+  int frame_count_ = 0;
+  std::vector<FeatureTrack> tracks_;
+  std::vector<int> live_;  // indices of tracks observed in the last frame
+  std::vector<cv::Mat> previous_pyramid_;
+};
+
+}  // namespace plenopath

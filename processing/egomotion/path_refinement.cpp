@@ -1,0 +1,199 @@
+#include "processing/egomotion/path_refinement.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "model/error.h"
+#include "processing/egomotion/bearing_cost.h"
+
+namespace plenopath {
+namespace {
+
+// Holds the distance between two poses near its initial value: fixes the scale gauge softly.
+struct DistancePrior {
+  DistancePrior(double distance, double weight) : distance(distance), weight(weight) {}
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* residual) const {
+    using std::sqrt;
+    const T dx = a[0] - b[0], dy = a[1] - b[1];
+    residual[0] = T(weight) * (sqrt(dx * dx + dy * dy + T(1e-18)) - T(distance)) / T(distance);
+    return true;
+  }
+  double distance, weight;
+};
+
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const RefinementProgress& progress, double begin, double end, int max_iterations)
+      : progress_(progress), begin_(begin), end_(end), max_iterations_(std::max(1, max_iterations)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    if (!progress_) return ceres::SOLVER_CONTINUE;
+    const double f = std::min(1.0, static_cast<double>(summary.iteration) / max_iterations_);
+    if (!progress_(begin_ + (end_ - begin_) * f)) {
+      cancelled = true;
+      return ceres::SOLVER_ABORT;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+  bool cancelled = false;
+
+ private:
+  const RefinementProgress& progress_;
+  double begin_, end_;
+  int max_iterations_;
+};
+
+double rms(const std::vector<double>& e) {
+  double s = 0.0;
+  for (double v : e) s += v * v;
+  return e.empty() ? 0.0 : std::sqrt(s / e.size());
+}
+
+// Solves with poses [first, last] free except those in [first, held_end) and pose 0 held.
+// Returns false when cancelled.
+bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, int last, int held_end,
+                 int max_iterations, const RefinementProgress& progress, double begin, double end,
+                 RefinementReport* report) {
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::CauchyLoss loss(options.loss_scale);
+  // Points with two or more observations from the range.
+  std::vector<int> count(p.points.size(), 0);
+  for (const BundleObservation& o : p.observations)
+    if (o.pose >= first && o.pose <= last) ++count[o.point];
+  int residuals = 0;
+  std::vector<bool> pose_used(p.poses.size(), false);
+  for (const BundleObservation& o : p.observations) {
+    if (o.pose < first || o.pose > last || count[o.point] < 2) continue;
+    problem.AddResidualBlock(PlanarBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
+                             p.points[o.point].data());
+    pose_used[o.pose] = true;
+    ++residuals;
+  }
+  if (residuals == 0) return true;
+  bool any_free = false;
+  for (int i = first; i <= last; ++i) {
+    if (!pose_used[i]) continue;
+    if (i < held_end || i == 0) {
+      problem.SetParameterBlockConstant(p.poses[i].data());
+    } else {
+      any_free = true;
+    }
+  }
+  // Scale gauge: when fewer than two poses are held, hold the distance from the first used pose to the
+  // farthest one.
+  int held = 0;
+  for (int i = first; i < std::min(held_end, last + 1); ++i) held += pose_used[i];
+  if (first == 0 && !pose_used[0]) held = 0;
+  if (held < 2) {
+    int anchor = first;
+    while (anchor <= last && !pose_used[anchor]) ++anchor;
+    int far = anchor;
+    double best = 0.0;
+    for (int i = anchor; i <= last; ++i) {
+      if (!pose_used[i]) continue;
+      const double d = (p.poses[i].head<2>() - p.poses[anchor].head<2>()).norm();
+      if (d > best) {
+        best = d;
+        far = i;
+      }
+    }
+    if (best > 0) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DistancePrior, 1, 3, 3>(
+                                   new DistancePrior(best, 1e3 * std::sqrt(static_cast<double>(residuals)))),
+                               nullptr, p.poses[anchor].data(), p.poses[far].data());
+    }
+  }
+  if (!any_free) return true;
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  solver.max_num_iterations = max_iterations;
+  solver.num_threads = options.threads;
+  solver.function_tolerance = 1e-7;
+  solver.parameter_tolerance = 1e-9;
+  solver.logging_type = ceres::SILENT;
+  ProgressCallback callback(progress, begin, end, max_iterations);
+  solver.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  report->iterations += static_cast<int>(summary.iterations.size());
+  return !callback.cancelled;
+}
+
+}  // namespace
+
+std::string RefinementOptions::check() const {
+  std::ostringstream o;
+  if (!(loss_scale > 0)) o << "loss_scale must be > 0; ";
+  if (window_keyframes < 0 || (window_keyframes > 0 && window_keyframes < 4)) o << "window_keyframes must be 0 or >= 4; ";
+  if (window_overlap < 2 || (window_keyframes > 0 && window_overlap >= window_keyframes))
+    o << "window_overlap must be >= 2 and below window_keyframes; ";
+  if (window_max_iterations < 0 || global_max_iterations < 0) o << "iteration limits must be >= 0; ";
+  if (threads < 1) o << "threads must be >= 1; ";
+  return o.str();
+}
+
+std::vector<double> observation_errors(const BundleProblem& p) {
+  std::vector<double> e;
+  e.reserve(p.observations.size());
+  for (const BundleObservation& o : p.observations) {
+    const PlanarBearingCost cost(o.bearing);
+    double r[2];
+    cost(p.poses[o.pose].data(), p.points[o.point].data(), r);
+    // Residuals are sines of the angle's components; an opposite direction still counts as far off.
+    const Eigen::Vector3d& q = p.points[o.point];
+    const Eigen::Vector3d& c = p.poses[o.pose];
+    const double ch = std::cos(c.z()), sh = std::sin(c.z());
+    const Eigen::Vector3d d(ch * (q.x() - c.x()) + sh * (q.y() - c.y()), -sh * (q.x() - c.x()) + ch * (q.y() - c.y()),
+                            q.z());
+    const double angle = std::atan2(d.cross(o.bearing).norm(), d.dot(o.bearing));
+    e.push_back(std::isfinite(angle) ? angle : M_PI);
+    (void)r;
+  }
+  return e;
+}
+
+RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options,
+                               const RefinementProgress& progress) {
+  const std::string bad = options.check();
+  if (!bad.empty()) throw Error("refinement options: " + bad);
+  RefinementReport report;
+  report.initial_rms = rms(observation_errors(problem));
+  const int n = static_cast<int>(problem.poses.size());
+  if (n < 2) {
+    report.final_rms = report.initial_rms;
+    return report;
+  }
+  const bool windowed = options.window_keyframes > 0 && n > options.window_keyframes;
+  const double windowed_share = windowed ? (options.global_max_iterations > 0 ? 0.5 : 1.0) : 0.0;
+  if (windowed) {
+    const int stride = options.window_keyframes - options.window_overlap;
+    const int windows = (n - options.window_overlap + stride - 1) / stride;
+    for (int w = 0, first = 0; first + options.window_overlap < n; ++w, first += stride) {
+      const int last = std::min(n - 1, first + options.window_keyframes - 1);
+      const int held_end = w == 0 ? 1 : first + options.window_overlap;
+      const double begin = windowed_share * w / windows, end = windowed_share * (w + 1) / windows;
+      ++report.windows;
+      if (!solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress, begin, end,
+                       &report)) {
+        report.cancelled = true;
+        report.final_rms = rms(observation_errors(problem));
+        return report;
+      }
+    }
+  }
+  if (options.global_max_iterations > 0) {
+    if (!solve_range(problem, options, 0, n - 1, 1, options.global_max_iterations, progress, windowed_share, 1.0,
+                     &report)) {
+      report.cancelled = true;
+    }
+  }
+  report.final_rms = rms(observation_errors(problem));
+  return report;
+}
+
+}  // namespace plenopath

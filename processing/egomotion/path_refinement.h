@@ -1,0 +1,52 @@
+#pragma once
+// Step 3: global refinement of planar poses (x, y, heading) and 3-D points with Ceres (bundle adjustment on
+// bearings). Angular residuals (bearing_cost.h), a robust loss, the gauge fixed (first pose held, the scale
+// held by a soft prior), sparse Schur. Long captures are refined in overlapping windows of keyframes first
+// (each window's leading poses held from the previous window), then in one global pass.
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace plenopath {
+
+struct BundleObservation {
+  int pose = 0;
+  int point = 0;
+  Eigen::Vector3d bearing = Eigen::Vector3d::UnitX();  // unit, camera frame
+};
+
+struct BundleProblem {
+  std::vector<Eigen::Vector3d> poses;   // (x, y, heading) per keyframe
+  std::vector<Eigen::Vector3d> points;  // plan frame; the camera centres are at z = 0
+  std::vector<BundleObservation> observations;
+};
+
+struct RefinementOptions {
+  double loss_scale = 0.003;       // Cauchy loss scale, radians (about half a pixel at 1024 wide)
+  int window_keyframes = 80;       // keyframes per window in the windowed pass (0 = no windowed pass)
+  int window_overlap = 20;         // keyframes shared by consecutive windows (held in the later one)
+  int window_max_iterations = 15;
+  int global_max_iterations = 40;  // 0 = skip the global pass
+  int threads = 2;
+  std::string check() const;       // empty when valid
+};
+
+struct RefinementReport {
+  double initial_rms = 0.0;  // angular residual RMS before, radians (all observations)
+  double final_rms = 0.0;
+  int windows = 0;
+  int iterations = 0;        // summed over all solves
+  bool cancelled = false;
+};
+
+// progress(fraction in [0, 1]) returns false to cancel; it is called from Ceres' iteration callback.
+using RefinementProgress = std::function<bool(double)>;
+
+RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options,
+                               const RefinementProgress& progress = {});
+
+// Angular residual (radians) of each observation under the problem's current values.
+std::vector<double> observation_errors(const BundleProblem& problem);
+
+}  // namespace plenopath
