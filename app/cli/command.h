@@ -21,6 +21,8 @@ struct Command {
 Command add_capture_info_command(CLI::App& parent);
 Command add_eval_path_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
+Command add_plan_info_command(CLI::App& parent);
 Command add_track_command(CLI::App& parent);
+Command add_visibility_command(CLI::App& parent);
 
 }  // namespace plenopath::cli

@@ -14,7 +14,9 @@ int main(int argc, char** argv) {
       add_capture_info_command(app),
       add_eval_path_command(app),
       add_info_command(app),
+      add_plan_info_command(app),
       add_track_command(app),
+      add_visibility_command(app),
   };
 
   try {
