@@ -29,7 +29,7 @@ fs::path test_dir(const std::string& name) {
 }
 
 // A small rendered capture of the office sample with keyframes, hotspots and a geo-anchor.
-Project make_rendered_project(const fs::path& dir, int frame_count = 12) {
+Project make_rendered_project(const fs::path& dir, int frame_count = 12, int width = 256) {
   Project p;
   p.plan = make_office_sample_plan();
   p.tour.title = "Export test <b>tour</b>";
@@ -37,8 +37,8 @@ Project make_rendered_project(const fs::path& dir, int frame_count = 12) {
   walk.frames.resize(std::min<std::size_t>(walk.frames.size(), frame_count));
   const SyntheticScene scene = build_synthetic_scene(p.plan);
   RenderOptions render;
-  render.width = 256;
-  render.height = 128;
+  render.width = width;
+  render.height = width / 2;
   render.depth = false;
   fs::create_directories(dir / "frames");
   for (PathFrame& f : walk.frames) {
@@ -333,6 +333,32 @@ TEST(PlanSvg, EscapesTextAndFlipsY) {
   EXPECT_NE(svg.find("A &amp; &lt;B&gt;"), std::string::npos);
   EXPECT_NE(svg.find("y2=\"-1.000000\""), std::string::npos);
   EXPECT_EQ(svg.find("<B>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// The exported player in Debian's headless Chromium (tests/app/player_check.py): non-blank canvas, a walk key
+// changes keyframe and picture, a hotspot click fires, a markup title stays text. The package and the
+// screenshots are left in the build folder (player_check/) to look at.
+TEST(TourPlayer, WalksAndReactsInHeadlessChromium) {
+  const fs::path work = fs::path(PLENOPATH_BINARY_DIR) / "player_check";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  Project p = make_rendered_project(work / "capture", 12, 1024);
+  const std::string xss = "<img src=x onerror=\"window.__pwned=1\">";
+  p.hotspots[0].title = xss;
+  TourExportOptions options;
+  options.output = (work / "tour").string();
+  options.max_size = 1024;
+  options.preview_size = 256;
+  export_tour(p, options);
+  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) + "/tests/app/player_check.py' '" +
+                          options.output + "' '" + (work / "player").string() + "' --xss-title '" + xss + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
 }  // namespace
