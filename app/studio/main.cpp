@@ -1,9 +1,48 @@
-// `plenopath-studio [PROJECT.plenopath]`: the editor.
+// `plenopath-studio [PROJECT.plenopath] [--screenshot FILE.png] [--frame N] [--autosave-seconds S]`: the editor.
+// --screenshot opens the project, waits until the panorama shows its frame, saves an image of the whole
+// window and exits (app/take-screenshot.sh uses it for the README).
 #include <QApplication>
+#include <QCommandLineParser>
+#include <QElapsedTimer>
 #include <QSurfaceFormat>
+#include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
+#include <cstdio>
 
+#include "app/studio/autosave.h"
+#include "app/studio/envelope_service.h"
 #include "app/studio/main_window.h"
+#include "widgets/map_view.h"
+#include "widgets/panorama_view.h"
+#include "widgets/project_document.h"
+
+namespace {
+
+// Runs the event loop until `done` or `timeout_ms`.
+template <typename Done>
+void wait_until(Done done, int timeout_ms) {
+  QElapsedTimer timer;
+  timer.start();
+  while (!done() && timer.elapsed() < timeout_ms) QApplication::processEvents(QEventLoop::AllEvents, 30);
+}
+
+int take_screenshot(plenopath::studio::MainWindow& window, const QString& file) {
+  using namespace plenopath;
+  const int position = window.document().current_position();
+  wait_until([&] { return window.panorama_view()->shown_position() == position; }, 20000);
+  wait_until([&] { return window.envelopes()->ready() || window.document().project().plan.empty(); }, 20000);
+  wait_until([] { return false; }, 500);  // let queued renders and repaints happen
+  window.map_view()->render_now();
+  const QPixmap pixmap = window.grab();
+  if (!pixmap.save(file)) {
+    std::fprintf(stderr, "plenopath-studio: cannot write the screenshot %s\n", qPrintable(file));
+    return 1;
+  }
+  std::printf("screenshot: %s (%dx%d)\n", qPrintable(file), pixmap.width(), pixmap.height());
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Must precede QApplication so that VTK's OpenGL widgets get a compatible context.
@@ -13,9 +52,43 @@ int main(int argc, char** argv) {
   QApplication::setOrganizationName("Plenopath");
   QApplication::setApplicationVersion(PLENOPATH_VERSION);
 
+  QCommandLineParser parser;
+  parser.setApplicationDescription("Plenopath Studio: walkthrough tours from 360° video.");
+  parser.addHelpOption();
+  parser.addVersionOption();
+  parser.addPositionalArgument("project", "Project file (*.plenopath) to open.", "[PROJECT]");
+  const QCommandLineOption screenshot(QString("screenshot"), "Save an image of the window to FILE and exit.", "FILE");
+  const QCommandLineOption frame(QString("frame"), "Go to path position N after opening.", "N");
+  const QCommandLineOption look(QString("look"), "Panorama look azimuth in degrees (with --screenshot).", "DEG");
+  const QCommandLineOption size(QString("size"), "Window size WxH (with --screenshot).", "WxH");
+  const QCommandLineOption autosave_seconds(QString("autosave-seconds"), "Autosave interval (default 180).", "S");
+  parser.addOptions({screenshot, frame, look, size, autosave_seconds});
+  parser.process(app);
+
   plenopath::studio::MainWindow window;
-  const QStringList args = QApplication::arguments();
-  if (args.size() > 1) window.open_project(args.at(1));
+  if (parser.isSet(autosave_seconds))
+    window.autosave().set_interval(static_cast<int>(parser.value(autosave_seconds).toDouble() * 1000));
+  if (parser.isSet(size)) {
+    const QStringList wh = parser.value(size).split('x');
+    if (wh.size() == 2) window.resize(wh[0].toInt(), wh[1].toInt());
+  }
   window.show();
+  const QStringList args = parser.positionalArguments();
+  bool opened = true;
+  if (!args.isEmpty()) {
+    if (parser.isSet(screenshot)) window.ask_recovery = [](const QString&) { return false; };
+    opened = window.open_project(args.first());
+  } else if (!parser.isSet(screenshot)) {
+    QTimer::singleShot(0, &window, [&window] { window.offer_untitled_recovery(); });
+  }
+  if (parser.isSet(frame)) window.document().set_current_position(parser.value(frame).toInt());
+  if (parser.isSet(look)) {
+    auto* p = window.panorama_view();
+    p->set_look(parser.value(look).toDouble() * M_PI / 180.0, p->elevation(), p->fov());
+  }
+  if (parser.isSet(screenshot)) {
+    if (!opened) return 1;
+    return take_screenshot(window, parser.value(screenshot));
+  }
   return QApplication::exec();
 }

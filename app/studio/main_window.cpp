@@ -2,70 +2,386 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QKeySequence>
 #include <QLabel>
 #include <QMenuBar>
-#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QSettings>
+#include <QSplitter>
 #include <QStatusBar>
+#include <QStyle>
+#include <QTimer>
+#include <QToolBar>
+#include <QToolButton>
+#include <QUndoStack>
+#include <QUndoView>
+#include <exception>
 
-#include "model/error.h"
-#include "model/project_io.h"
+#include "app/studio/autosave.h"
+#include "app/studio/envelope_service.h"
+#include "app/studio/reactions.h"
+#include "app/studio/studio_tasks.h"
+#include "widgets/capture_import_dialog.h"
+#include "widgets/document_commands.h"
+#include "widgets/dxf_import_dialog.h"
+#include "widgets/frame_provider.h"
+#include "widgets/layers_panel.h"
+#include "widgets/map_view.h"
+#include "widgets/panorama_view.h"
+#include "widgets/project_document.h"
+#include "widgets/sampling_panel.h"
+#include "widgets/task_runner.h"
+#include "widgets/timeline.h"
 
 namespace plenopath::studio {
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
-  summary_ = new QLabel(this);
-  summary_->setAlignment(Qt::AlignCenter);
-  summary_->setText(tr("Open a project (Ctrl+O) to begin."));
-  setCentralWidget(summary_);
+namespace {
+constexpr int kDefaultAutosaveMs = 3 * 60 * 1000;
+
+bool is_video(const QString& file) {
+  static const QStringList extensions{"mp4", "mov", "mkv", "avi", "m4v", "webm"};
+  return extensions.contains(QFileInfo(file).suffix().toLower());
+}
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent),
+      document_(new widgets::ProjectDocument(this)),
+      tasks_(new widgets::TaskRunner(*document_, this)),
+      frames_(new widgets::FrameProvider(*document_, this)),
+      autosave_(new Autosave(*document_, kDefaultAutosaveMs, this)) {
+  setObjectName("main_window");
+  ask_recovery = [this](const QString& side) {
+    return QMessageBox::question(this, tr("Recover unsaved changes?"),
+                                 tr("Plenopath Studio did not close properly. Changes made after the last save "
+                                    "were autosaved to\n%1\n\nRecover them?")
+                                     .arg(side),
+                                 QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes) == QMessageBox::Yes;
+  };
+  ask_save_changes = [this] {
+    return QMessageBox::warning(this, tr("Unsaved changes"), tr("Save the changes to this project?"),
+                                QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
+                                QMessageBox::Save);
+  };
+  show_error = [this](const QString& title, const QString& message) {
+    QMessageBox::critical(this, title, message);
+  };
+
+  map_ = new widgets::MapView(*document_, this);
+  panorama_ = new widgets::PanoramaView(*document_, *frames_, this);
+  auto* splitter = new QSplitter(Qt::Horizontal, this);
+  splitter->addWidget(map_);
+  splitter->addWidget(panorama_);
+  splitter->setStretchFactor(0, 1);
+  splitter->setStretchFactor(1, 1);
+  setCentralWidget(splitter);
+  envelopes_ = new EnvelopeService(*document_, *map_, this);
+
+  create_docks();
   create_actions();
+
+  // Status bar: the running task, its progress and Cancel.
+  task_label_ = new QLabel(this);
+  progress_ = new QProgressBar(this);
+  progress_->setRange(0, 1000);
+  progress_->setMaximumWidth(220);
+  cancel_ = new QToolButton(this);
+  cancel_->setText(tr("Cancel"));
+  cancel_->setToolTip(tr("Stop the running task; the document stays as it was"));
+  statusBar()->addPermanentWidget(task_label_);
+  statusBar()->addPermanentWidget(progress_);
+  statusBar()->addPermanentWidget(cancel_);
+  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(progress_),
+                     static_cast<QWidget*>(cancel_)})
+    w->hide();
+  connect(cancel_, &QToolButton::clicked, tasks_, &widgets::TaskRunner::cancel);
+  connect(tasks_, &widgets::TaskRunner::started, this, [this](const QString& title) {
+    task_label_->setText(title + "…");
+    progress_->setValue(0);
+    task_label_->show();
+    progress_->show();
+    cancel_->show();
+  });
+  connect(tasks_, &widgets::TaskRunner::progress, this, [this](double fraction, const QString& message) {
+    progress_->setValue(static_cast<int>(fraction * 1000));
+    if (!message.isEmpty()) statusBar()->showMessage(message);
+  });
+  connect(tasks_, &widgets::TaskRunner::finished, this, [this](bool applied) {
+    task_label_->hide();
+    progress_->hide();
+    cancel_->hide();
+    statusBar()->showMessage(applied ? tr("Done") : tr("Stopped; nothing changed"), 4000);
+  });
+  connect(tasks_, &widgets::TaskRunner::failed, this,
+          [this](const QString& title, const QString& message) { show_error(tr("%1 failed").arg(title), message); });
+
+  connect(document_, &widgets::ProjectDocument::file_name_changed, this, [this] { update_title(); });
+  connect(document_, &widgets::ProjectDocument::modified_changed, this, [this] { update_title(); });
+  connect(autosave_, &Autosave::written, this,
+          [this](const QString& side) { statusBar()->showMessage(tr("Autosaved to %1").arg(side), 3000); });
+
+  setAcceptDrops(true);
+  resize(1500, 920);
+  restore_window_state();
   update_title();
-  resize(1280, 800);
   statusBar()->showMessage(tr("Ready"));
 }
 
 MainWindow::~MainWindow() = default;
 
+void MainWindow::create_docks() {
+  auto dock = [this](const QString& title, const QString& name, QWidget* content, Qt::DockWidgetArea area) {
+    auto* d = new QDockWidget(title, this);
+    d->setObjectName(name);
+    d->setWidget(content);
+    addDockWidget(area, d);
+    return d;
+  };
+  timeline_ = new widgets::TimelinePanel(*document_, this);
+  sampling_ = new widgets::SamplingPanel(*document_, this);
+  layers_ = new widgets::LayersPanel(*document_, this);
+  auto* history = new QUndoView(document_->undo_stack(), this);
+  history->setEmptyLabel(tr("<opened>"));
+  dock(tr("Timeline"), "timeline_dock", timeline_, Qt::BottomDockWidgetArea);
+  QDockWidget* sampling = dock(tr("Sampling"), "sampling_dock", sampling_, Qt::RightDockWidgetArea);
+  QDockWidget* layers = dock(tr("Layers"), "layers_dock", layers_, Qt::RightDockWidgetArea);
+  QDockWidget* undo = dock(tr("History"), "history_dock", history, Qt::RightDockWidgetArea);
+  tabifyDockWidget(layers, undo);
+  sampling->raise();
+  resizeDocks({sampling}, {300}, Qt::Horizontal);
+}
+
 void MainWindow::create_actions() {
+  QStyle* s = style();
   QMenu* file = menuBar()->addMenu(tr("&File"));
-  QAction* open = file->addAction(tr("&Open…"), this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, tr("Open project"), QString(),
-                                                   tr("Plenopath projects (*.plenopath)"));
-    if (!f.isEmpty()) open_project(f);
-  });
+  QAction* new_action = file->addAction(s->standardIcon(QStyle::SP_FileIcon), tr("&New"));
+  new_action->setShortcut(QKeySequence::New);
+  new NewProjectReaction(new_action, *this);
+  QAction* open = file->addAction(s->standardIcon(QStyle::SP_DialogOpenButton), tr("&Open…"));
   open->setShortcut(QKeySequence::Open);
+  new OpenProjectReaction(open, *this);
+  new RecentFilesMenu(file->addMenu(tr("Open &Recent")), *this);
+  QAction* save = file->addAction(s->standardIcon(QStyle::SP_DialogSaveButton), tr("&Save"));
+  save->setShortcut(QKeySequence::Save);
+  new SaveProjectReaction(save, *this, false);
+  QAction* save_as = file->addAction(tr("Save &As…"));
+  save_as->setShortcut(QKeySequence::SaveAs);
+  new SaveProjectReaction(save_as, *this, true);
+  file->addSeparator();
+  QAction* import_plan = file->addAction(tr("Import &floor plan (DXF)…"));
+  import_plan->setShortcut(tr("Ctrl+Shift+D"));
+  new ImportPlanReaction(import_plan, *this);
+  QAction* import_capture = file->addAction(tr("Import &capture (folder or video)…"));
+  import_capture->setShortcut(tr("Ctrl+Shift+C"));
+  new ImportCaptureReaction(import_capture, *this);
+  QAction* import_path = file->addAction(tr("Import camera &path…"));
+  new ImportPathReaction(import_path, *this);
   file->addSeparator();
   QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
   quit->setShortcut(QKeySequence::Quit);
+
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  QAction* undo = document_->undo_stack()->createUndoAction(this, tr("&Undo"));
+  undo->setShortcut(QKeySequence::Undo);
+  undo->setIcon(s->standardIcon(QStyle::SP_ArrowBack));
+  QAction* redo = document_->undo_stack()->createRedoAction(this, tr("&Redo"));
+  redo->setShortcut(QKeySequence::Redo);
+  redo->setIcon(s->standardIcon(QStyle::SP_ArrowForward));
+  edit->addAction(undo);
+  edit->addAction(redo);
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  QAction* fit = view->addAction(tr("&Fit map"), this, [this] { map_->reset_camera(); });
+  fit->setShortcut(tr("Ctrl+0"));
+  QAction* whole = view->addAction(tr("&Whole equirectangular image"));
+  whole->setCheckable(true);
+  whole->setShortcut(tr("Ctrl+E"));
+  connect(whole, &QAction::toggled, panorama_, &widgets::PanoramaView::set_equirect_mode);
+  connect(panorama_, &widgets::PanoramaView::equirect_mode_changed, whole, &QAction::setChecked);
+  QAction* next = view->addAction(tr("&Next frame"), this, [this] { document_->step(1); });
+  next->setShortcut(tr("Ctrl+Right"));
+  QAction* previous = view->addAction(tr("&Previous frame"), this, [this] { document_->step(-1); });
+  previous->setShortcut(tr("Ctrl+Left"));
+  view->addSeparator();
+  for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
+
+  QMenu* process = menuBar()->addMenu(tr("&Process"));
+  QAction* visibility = process->addAction(tr("Compute &visibility"));
+  visibility->setShortcut(tr("Ctrl+Shift+V"));
+  new ComputeVisibilityReaction(visibility, *this);
+  QAction* resample = process->addAction(tr("&Resample keyframes"), this, [this] { sampling_->resample(0); });
+  resample->setShortcut(tr("Ctrl+Shift+K"));
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&About"), this, [this] {
+    QMessageBox::about(this, tr("About Plenopath Studio"),
+                       tr("<b>Plenopath Studio %1</b><br>Walkthrough tours from 360° video along a path "
+                          "through a building.<br>GPL-3.0-or-later.")
+                           .arg(QApplication::applicationVersion()));
+  });
+
+  QToolBar* bar = addToolBar(tr("Main"));
+  bar->setObjectName("main_toolbar");
+  bar->addAction(open);
+  bar->addAction(save);
+  bar->addSeparator();
+  bar->addAction(undo);
+  bar->addAction(redo);
+  bar->addSeparator();
+  bar->addAction(import_plan);
+  bar->addAction(import_capture);
+  bar->addAction(visibility);
+  bar->addAction(whole);
+  bar->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
+}
+
+void MainWindow::update_title() {
+  const QString name = document_->file_name().isEmpty() ? tr("Untitled") : QFileInfo(document_->file_name()).fileName();
+  setWindowTitle(tr("%1%2 — Plenopath Studio").arg(name).arg(document_->is_modified() ? "*" : ""));
+}
+
+void MainWindow::restore_window_state() {
+  QSettings settings;
+  restoreGeometry(settings.value("window/geometry").toByteArray());
+  restoreState(settings.value("window/state").toByteArray());
 }
 
 bool MainWindow::open_project(const QString& file) {
   try {
-    project_ = load_project(file.toStdString());
-  } catch (const Error& e) {
-    QMessageBox::critical(this, tr("Cannot open project"), QString::fromStdString(e.what()));
+    document_->load(file);
+  } catch (const std::exception& e) {
+    show_error(tr("Cannot open project"), QString::fromStdString(e.what()));
     return false;
   }
-  project_file_ = QFileInfo(file).absoluteFilePath();
-  update_title();
-  show_summary();
-  statusBar()->showMessage(tr("Opened %1").arg(project_file_), 5000);
+  RecentFilesMenu::add(document_->file_name());
+  recover_autosave_if_wanted(document_->file_name());
+  statusBar()->showMessage(tr("Opened %1").arg(document_->file_name()), 5000);
   return true;
 }
 
-void MainWindow::update_title() {
-  const QString name = project_file_.isEmpty() ? tr("Untitled") : QFileInfo(project_file_).fileName();
-  setWindowTitle(tr("%1 — Plenopath Studio").arg(name));
+bool MainWindow::recover_autosave_if_wanted(const QString& file) {
+  if (!Autosave::recovery_available(file)) return false;
+  if (!ask_recovery(Autosave::side_file(file))) {
+    autosave_->discard();
+    return false;
+  }
+  try {
+    const Project recovered = Autosave::read(file);
+    document_->undo_stack()->push(new widgets::ReplacePartsCommand(*document_, tr("Recover autosaved changes"),
+                                                                   recovered, widgets::kEverythingChanged));
+  } catch (const std::exception& e) {
+    show_error(tr("Cannot recover the autosave"), QString::fromStdString(e.what()));
+    return false;
+  }
+  return true;
 }
 
-void MainWindow::show_summary() {
-  summary_->setText(tr("<b>%1</b><br>%2 plan segments · %3 frames · %4 keyframes")
-                        .arg(QString::fromStdString(project_.tour.title).toHtmlEscaped())
-                        .arg(project_.plan.segments.size())
-                        .arg(project_.path.size())
-                        .arg(project_.keyframes.indices.size()));
+void MainWindow::offer_untitled_recovery() {
+  if (document_->file_name().isEmpty()) recover_autosave_if_wanted(QString());
+}
+
+bool MainWindow::save_project() {
+  if (document_->file_name().isEmpty()) return save_project_as();
+  return save_project_to(document_->file_name());
+}
+
+bool MainWindow::save_project_as() {
+  QString file = QFileDialog::getSaveFileName(this, tr("Save project"), document_->file_name(),
+                                              tr("Plenopath projects (*.plenopath)"));
+  if (file.isEmpty()) return false;
+  if (!file.endsWith(".plenopath")) file += ".plenopath";
+  return save_project_to(file);
+}
+
+bool MainWindow::save_project_to(const QString& file) {
+  const QString old_side = Autosave::side_file(document_->file_name());
+  try {
+    document_->save(file);
+  } catch (const std::exception& e) {
+    show_error(tr("Cannot save project"), QString::fromStdString(e.what()));
+    return false;
+  }
+  QFile::remove(old_side);
+  autosave_->discard();
+  RecentFilesMenu::add(document_->file_name());
+  statusBar()->showMessage(tr("Saved %1").arg(document_->file_name()), 4000);
+  return true;
+}
+
+bool MainWindow::maybe_save() {
+  if (!document_->is_modified()) return true;
+  switch (ask_save_changes()) {
+    case QMessageBox::Save: return save_project();
+    case QMessageBox::Discard: autosave_->discard(); return true;
+    default: return false;
+  }
+}
+
+void MainWindow::import_plan(const QString& dxf_file) {
+  widgets::DxfImportDialog dialog(this, dxf_file);
+  if (dialog.exec() != QDialog::Accepted) return;
+  Project after = document_->snapshot();
+  after.plan = dialog.plan();
+  document_->undo_stack()->push(
+      new widgets::ReplacePartsCommand(*document_, tr("Import floor plan"), after, widgets::kPlanChanged));
+  map_->reset_camera();
+}
+
+void MainWindow::import_capture(const QString& folder_or_video) {
+  widgets::CaptureImportDialog dialog(this, folder_or_video);
+  if (dialog.exec() != QDialog::Accepted) return;
+  if (!tasks_->start(tr("Import capture"), import_capture_task(dialog.choices())))
+    show_error(tr("Busy"), tr("Another task is running; wait for it or cancel it first."));
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (!maybe_save()) {
+    event->ignore();
+    return;
+  }
+  if (tasks_->is_running()) {
+    tasks_->cancel();
+    tasks_->wait();
+  }
+  // Closing cleanly: the autosave is not needed any more.
+  autosave_->discard();
+  QSettings settings;
+  settings.setValue("window/geometry", saveGeometry());
+  settings.setValue("window/state", saveState());
+  event->accept();
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  const QList<QUrl> urls = event->mimeData()->urls();
+  if (urls.isEmpty()) return;
+  const QString file = urls.first().toLocalFile();
+  const QFileInfo info(file);
+  const QString suffix = info.suffix().toLower();
+  event->acceptProposedAction();
+  // Dialogs must not run inside the drop handler (the drag source waits): defer them.
+  QTimer::singleShot(0, this, [this, file, info, suffix] {
+    if (suffix == "plenopath") {
+      if (maybe_save()) open_project(file);
+    } else if (suffix == "dxf") {
+      import_plan(file);
+    } else if (info.isDir() || is_video(file)) {
+      import_capture(file);
+    } else {
+      show_error(tr("Cannot open %1").arg(info.fileName()),
+                 tr("Drop a .plenopath project, a .dxf plan, a folder of frames or a video."));
+    }
+  });
 }
 
 }  // namespace plenopath::studio

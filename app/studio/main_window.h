@@ -1,13 +1,30 @@
 #pragma once
-// The studio's main window. Thin: actions live in small classes, views in widgets/.
+// The studio's main window: the map and the panorama side by side, docks for the timeline, sampling, layers
+// and history, menus and a toolbar built from small reaction classes (app/studio/reactions.h), a status bar
+// with the background task's progress and Cancel. It owns the document, the task runner and autosave.
 #include <QMainWindow>
-#include <memory>
-
-#include "model/project.h"
+#include <QMessageBox>
+#include <functional>
 
 class QLabel;
+class QProgressBar;
+class QToolButton;
+
+namespace plenopath::widgets {
+class FrameProvider;
+class LayersPanel;
+class MapView;
+class PanoramaView;
+class ProjectDocument;
+class SamplingPanel;
+class TaskRunner;
+class TimelinePanel;
+}  // namespace plenopath::widgets
 
 namespace plenopath::studio {
+
+class Autosave;
+class EnvelopeService;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -15,18 +32,60 @@ class MainWindow : public QMainWindow {
   explicit MainWindow(QWidget* parent = nullptr);
   ~MainWindow() override;
 
-  // Opens a project file; shows a message box (and returns false) on error.
+  // Opens a project file (offering to recover a newer autosave); shows a message and returns false on error.
   bool open_project(const QString& file);
-  const Project& project() const { return project_; }
+  // Save to the current file (Save As when untitled); false when cancelled or failed (message shown).
+  bool save_project();
+  bool save_project_as();
+  bool save_project_to(const QString& file);
+  // With unsaved changes: asks Save / Discard / Cancel. True when it is fine to drop the document.
+  bool maybe_save();
+  // Import dialogs (empty = ask for the file first).
+  void import_plan(const QString& dxf_file);
+  void import_capture(const QString& folder_or_video);
+  // Offers the autosave of an untitled document left by a crash, if any.
+  void offer_untitled_recovery();
+
+  widgets::ProjectDocument& document() const { return *document_; }
+  widgets::TaskRunner& tasks() const { return *tasks_; }
+  Autosave& autosave() const { return *autosave_; }
+  widgets::MapView* map_view() const { return map_; }
+  widgets::PanoramaView* panorama_view() const { return panorama_; }
+  widgets::SamplingPanel* sampling_panel() const { return sampling_; }
+  widgets::TimelinePanel* timeline_panel() const { return timeline_; }
+  EnvelopeService* envelopes() const { return envelopes_; }
+
+  // Questions the window asks; tests replace them with fixed answers.
+  std::function<bool(const QString& autosave_file)> ask_recovery;
+  std::function<QMessageBox::StandardButton()> ask_save_changes;
+  // Where errors go (default: a message box).
+  std::function<void(const QString& title, const QString& message)> show_error;
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
 
  private:
+  void create_docks();
   void create_actions();
   void update_title();
-  void show_summary();
+  void restore_window_state();
+  bool recover_autosave_if_wanted(const QString& file);
 
-  Project project_;
-  QString project_file_;
-  QLabel* summary_ = nullptr;
+  widgets::ProjectDocument* document_;
+  widgets::TaskRunner* tasks_;
+  widgets::FrameProvider* frames_;
+  Autosave* autosave_;
+  widgets::MapView* map_ = nullptr;
+  widgets::PanoramaView* panorama_ = nullptr;
+  widgets::TimelinePanel* timeline_ = nullptr;
+  widgets::SamplingPanel* sampling_ = nullptr;
+  widgets::LayersPanel* layers_ = nullptr;
+  EnvelopeService* envelopes_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QToolButton* cancel_ = nullptr;
+  QLabel* task_label_ = nullptr;
 };
 
 }  // namespace plenopath::studio

@@ -1,0 +1,114 @@
+#include "app/studio/reactions.h"
+
+#include <QAction>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMessageBox>
+#include <QSettings>
+#include <QUndoStack>
+#include <exception>
+
+#include "app/studio/main_window.h"
+#include "app/studio/studio_tasks.h"
+#include "model/path_io.h"
+#include "widgets/capture_import_dialog.h"
+#include "widgets/document_commands.h"
+#include "widgets/dxf_import_dialog.h"
+#include "widgets/project_document.h"
+#include "widgets/task_runner.h"
+
+namespace plenopath::studio {
+
+Reaction::Reaction(QAction* action, MainWindow& window) : QObject(action), window_(window), action_(action) {
+  connect(action, &QAction::triggered, this, [this] { on_triggered(); });
+}
+
+void NewProjectReaction::on_triggered() {
+  if (!window_.maybe_save()) return;
+  window_.document().reset(Project{}, QString());
+}
+
+void OpenProjectReaction::on_triggered() {
+  const QString file = QFileDialog::getOpenFileName(&window_, QObject::tr("Open project"), QString(),
+                                                    QObject::tr("Plenopath projects (*.plenopath)"));
+  if (!file.isEmpty() && window_.maybe_save()) window_.open_project(file);
+}
+
+SaveProjectReaction::SaveProjectReaction(QAction* action, MainWindow& window, bool save_as)
+    : Reaction(action, window), save_as_(save_as) {}
+
+void SaveProjectReaction::on_triggered() {
+  if (save_as_) {
+    window_.save_project_as();
+  } else {
+    window_.save_project();
+  }
+}
+
+void ImportPlanReaction::on_triggered() { window_.import_plan(QString()); }
+
+void ImportCaptureReaction::on_triggered() { window_.import_capture(QString()); }
+
+void ImportPathReaction::on_triggered() {
+  const QString file = QFileDialog::getOpenFileName(&window_, QObject::tr("Camera path"), QString(),
+                                                    QObject::tr("Path files (*.json)"));
+  if (file.isEmpty()) return;
+  Project after = window_.document().snapshot();
+  try {
+    after.path = read_path_file(file.toStdString());
+  } catch (const std::exception& e) {
+    QMessageBox::critical(&window_, QObject::tr("Cannot read the path"), QString::fromStdString(e.what()));
+    return;
+  }
+  window_.document().undo_stack()->push(new widgets::ReplacePartsCommand(
+      window_.document(), QObject::tr("Import path"), after, widgets::kPathChanged));
+}
+
+ComputeVisibilityReaction::ComputeVisibilityReaction(QAction* action, MainWindow& window)
+    : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void ComputeVisibilityReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  action()->setEnabled(!window_.tasks().is_running() && p.path.size() >= 2 && !p.plan.segments.empty());
+}
+
+void ComputeVisibilityReaction::on_triggered() {
+  window_.tasks().start(QObject::tr("Compute visibility"), compute_visibility_task());
+}
+
+RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window) : QObject(menu), menu_(menu), window_(window) {
+  connect(menu_, &QMenu::aboutToShow, this, &RecentFilesMenu::refill);
+  refill();
+}
+
+QStringList RecentFilesMenu::files() { return QSettings().value("recent_files").toStringList(); }
+
+void RecentFilesMenu::add(const QString& file) {
+  QStringList list = files();
+  const QString absolute = QFileInfo(file).absoluteFilePath();
+  list.removeAll(absolute);
+  list.prepend(absolute);
+  while (list.size() > 10) list.removeLast();
+  QSettings().setValue("recent_files", list);
+}
+
+void RecentFilesMenu::refill() {
+  menu_->clear();
+  const QStringList list = files();
+  for (const QString& file : list) {
+    QAction* a = menu_->addAction(QFileInfo(file).fileName(), this, [this, file] {
+      if (window_.maybe_save()) window_.open_project(file);
+    });
+    a->setToolTip(file);
+    a->setEnabled(QFileInfo::exists(file));
+  }
+  if (list.isEmpty()) menu_->addAction(tr("(none)"))->setEnabled(false);
+}
+
+}  // namespace plenopath::studio

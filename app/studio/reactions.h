@@ -1,0 +1,90 @@
+#pragma once
+// One small class per user action (ParaView's pqReaction habit): each owns what its QAction does, so the
+// main window only builds menus and docks.
+#include <QObject>
+#include <QStringList>
+
+class QAction;
+class QMenu;
+
+namespace plenopath::studio {
+
+class MainWindow;
+
+class Reaction : public QObject {
+  Q_OBJECT
+ public:
+  Reaction(QAction* action, MainWindow& window);
+  QAction* action() const { return action_; }
+
+ protected:
+  virtual void on_triggered() = 0;
+  MainWindow& window_;
+
+ private:
+  QAction* action_;
+};
+
+class NewProjectReaction : public Reaction {
+ public:
+  using Reaction::Reaction;
+  void on_triggered() override;
+};
+
+class OpenProjectReaction : public Reaction {
+ public:
+  using Reaction::Reaction;
+  void on_triggered() override;
+};
+
+class SaveProjectReaction : public Reaction {
+ public:
+  SaveProjectReaction(QAction* action, MainWindow& window, bool save_as);
+  void on_triggered() override;
+
+ private:
+  bool save_as_;
+};
+
+class ImportPlanReaction : public Reaction {
+ public:
+  using Reaction::Reaction;
+  void on_triggered() override;
+};
+
+class ImportCaptureReaction : public Reaction {
+ public:
+  using Reaction::Reaction;
+  void on_triggered() override;
+};
+
+class ImportPathReaction : public Reaction {
+ public:
+  using Reaction::Reaction;
+  void on_triggered() override;
+};
+
+class ComputeVisibilityReaction : public Reaction {
+ public:
+  ComputeVisibilityReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
+// The File ▸ Open Recent menu, kept in QSettings ("recent_files").
+class RecentFilesMenu : public QObject {
+  Q_OBJECT
+ public:
+  RecentFilesMenu(QMenu* menu, MainWindow& window);
+  static void add(const QString& file);
+  static QStringList files();
+
+ private:
+  void refill();
+  QMenu* menu_;
+  MainWindow& window_;
+};
+
+}  // namespace plenopath::studio

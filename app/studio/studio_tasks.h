@@ -1,0 +1,14 @@
+#pragma once
+// The studio's background tasks: each wraps a processing step as a TaskFunction (snapshot in, changed
+// project out) so it runs on a worker with progress and cancel, and lands as one undo step.
+#include "widgets/capture_import_dialog.h"
+#include "widgets/task_runner.h"
+
+namespace plenopath::studio {
+
+// Scans the folder or video and sets the project's capture (keeps GPS data already there).
+widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices);
+// Visibility events, cells and critical lines along the path (processing/visibility.h).
+widgets::TaskFunction compute_visibility_task();
+
+}  // namespace plenopath::studio

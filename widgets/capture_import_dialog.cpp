@@ -1,0 +1,94 @@
+#include "widgets/capture_import_dialog.h"
+
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QVBoxLayout>
+
+namespace plenopath::widgets {
+
+CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
+    : QDialog(parent),
+      source_(new QLineEdit(source, this)),
+      first_(new QSpinBox(this)),
+      last_(new QSpinBox(this)),
+      stride_(new QSpinBox(this)),
+      depth_(new QLineEdit(this)),
+      height_(new QDoubleSpinBox(this)),
+      rate_(new QDoubleSpinBox(this)) {
+  setWindowTitle(tr("Import capture"));
+  auto* folder_button = new QPushButton(tr("Folder…"), this);
+  auto* video_button = new QPushButton(tr("Video…"), this);
+  auto* depth_button = new QPushButton(tr("Folder…"), this);
+  auto* source_row = new QHBoxLayout;
+  source_row->addWidget(source_, 1);
+  source_row->addWidget(folder_button);
+  source_row->addWidget(video_button);
+  auto* depth_row = new QHBoxLayout;
+  depth_row->addWidget(depth_, 1);
+  depth_row->addWidget(depth_button);
+  first_->setRange(0, 100000000);
+  last_->setRange(-1, 100000000);
+  last_->setValue(-1);
+  last_->setSpecialValueText(tr("last"));
+  stride_->setRange(1, 1000);
+  height_->setRange(0.0, 10.0);
+  height_->setDecimals(2);
+  height_->setSuffix(tr(" m"));
+  height_->setSpecialValueText(tr("unknown"));
+  height_->setValue(1.6);
+  rate_->setRange(0.1, 240.0);
+  rate_->setValue(30.0);
+  rate_->setSuffix(tr(" fps"));
+  depth_->setPlaceholderText(tr("optional: 16-bit PNG (mm) or EXR (m) per frame"));
+
+  auto* form = new QFormLayout;
+  form->addRow(tr("Frames (folder or video)"), source_row);
+  form->addRow(tr("First frame"), first_);
+  form->addRow(tr("Last frame"), last_);
+  form->addRow(tr("Keep every"), stride_);
+  form->addRow(tr("Depth folder"), depth_row);
+  form->addRow(tr("Camera height"), height_);
+  form->addRow(tr("Frame rate (folders)"), rate_);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addWidget(buttons);
+
+  connect(folder_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getExistingDirectory(this, tr("Folder of equirectangular frames"), source_->text());
+    if (!f.isEmpty()) source_->setText(f);
+  });
+  connect(video_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, tr("360° video"), source_->text(),
+                                                   tr("Videos (*.mp4 *.mov *.mkv *.avi *.MP4 *.MOV)"));
+    if (!f.isEmpty()) source_->setText(f);
+  });
+  connect(depth_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getExistingDirectory(this, tr("Depth maps"), depth_->text());
+    if (!f.isEmpty()) depth_->setText(f);
+  });
+  connect(buttons, &QDialogButtonBox::accepted, this, [this] {
+    if (!source_->text().isEmpty()) accept();
+  });
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+}
+
+CaptureImportChoices CaptureImportDialog::choices() const {
+  CaptureImportChoices c;
+  c.source = source_->text().toStdString();
+  c.options.first_frame = first_->value();
+  c.options.last_frame = last_->value();
+  c.options.stride = stride_->value();
+  c.options.depth_folder = depth_->text().toStdString();
+  c.options.folder_frame_rate = rate_->value();
+  c.camera_height_m = height_->value();
+  return c;
+}
+
+}  // namespace plenopath::widgets

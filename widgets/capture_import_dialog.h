@@ -1,0 +1,38 @@
+#pragma once
+// Importing a capture: a folder of equirectangular frames or a video, the frame range and stride, an
+// optional depth folder, the camera height and (for folders) the frame rate. The scan itself runs as a
+// background task (it can take a while on 100 000 frames); this dialog only collects the choices.
+#include <QDialog>
+#include <string>
+
+#include "processing/frame_source.h"
+
+class QDoubleSpinBox;
+class QLineEdit;
+class QSpinBox;
+
+namespace plenopath::widgets {
+
+struct CaptureImportChoices {
+  std::string source;           // folder or video file
+  FrameSourceOptions options;   // range, stride, depth folder, folder frame rate
+  double camera_height_m = 0.0; // 0 = unknown
+};
+
+class CaptureImportDialog : public QDialog {
+  Q_OBJECT
+ public:
+  explicit CaptureImportDialog(QWidget* parent = nullptr, const QString& source = {});
+  CaptureImportChoices choices() const;
+
+ private:
+  QLineEdit* source_;
+  QSpinBox* first_;
+  QSpinBox* last_;
+  QSpinBox* stride_;
+  QLineEdit* depth_;
+  QDoubleSpinBox* height_;
+  QDoubleSpinBox* rate_;
+};
+
+}  // namespace plenopath::widgets

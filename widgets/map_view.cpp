@@ -1,0 +1,456 @@
+#include "widgets/map_view.h"
+
+#include <QMouseEvent>
+#include <QTimer>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleImage.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkCellData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "widgets/project_document.h"
+
+namespace plenopath::widgets {
+
+namespace {
+
+// Left drag pans (the plan never rotates); right drag and the wheel zoom.
+class PanZoomStyle : public vtkInteractorStyleImage {
+ public:
+  static PanZoomStyle* New();
+  vtkTypeMacro(PanZoomStyle, vtkInteractorStyleImage)
+  void OnLeftButtonDown() override {
+    FindPokedRenderer(Interactor->GetEventPosition()[0], Interactor->GetEventPosition()[1]);
+    if (CurrentRenderer) StartPan();
+  }
+  void OnLeftButtonUp() override {
+    if (State == VTKIS_PAN) EndPan();
+  }
+  void OnChar() override {}  // no 'w'ireframe, 'r'eset, 'q'uit surprises
+};
+vtkStandardNewMacro(PanZoomStyle);
+
+// Z of each layer: the camera looks down -Z, so larger Z is drawn on top.
+constexpr double kEnvelopeZ = -0.02;
+constexpr double kConeZ = -0.01;
+constexpr double kPlanZ = 0.0;
+constexpr double kCriticalZ = 0.005;
+constexpr double kPathZ = 0.01;
+constexpr double kKeyframeZ = 0.02;
+constexpr double kCurrentZ = 0.03;
+
+const std::array<unsigned char, 3> kBackground{246, 245, 240};
+
+// AutoCAD colour index to RGB for the common indices; others get a hue from the index.
+std::array<unsigned char, 3> aci_colour(int aci) {
+  switch (aci) {
+    case 1: return {200, 40, 40};
+    case 2: return {190, 170, 20};
+    case 3: return {40, 150, 40};
+    case 4: return {20, 160, 170};
+    case 5: return {40, 70, 200};
+    case 6: return {170, 40, 170};
+    case 8: return {110, 110, 110};
+    case 9: return {160, 160, 160};
+    case 7:
+    case 0:
+    case 256: return {60, 60, 60};
+    default: {
+      const double hue = std::fmod(aci * 0.618034, 1.0) * 6.0;
+      const double x = 1.0 - std::fabs(std::fmod(hue, 2.0) - 1.0);
+      double r = 0, g = 0, b = 0;
+      if (hue < 1) r = 1, g = x; else if (hue < 2) r = x, g = 1; else if (hue < 3) g = 1, b = x;
+      else if (hue < 4) g = x, b = 1; else if (hue < 5) r = x, b = 1; else r = 1, b = x;
+      return {static_cast<unsigned char>(40 + 150 * r), static_cast<unsigned char>(40 + 150 * g),
+              static_cast<unsigned char>(40 + 150 * b)};
+    }
+  }
+}
+
+// Blends a colour toward the background (weight = share of the colour kept).
+std::array<unsigned char, 3> faded(std::array<unsigned char, 3> c, double weight) {
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<unsigned char>(weight * c[k] + (1.0 - weight) * kBackground[k]);
+  return c;
+}
+
+vtkSmartPointer<vtkActor> make_actor(const double rgb[3], double line_width, double opacity = 1.0) {
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
+  actor->GetProperty()->SetLineWidth(static_cast<float>(line_width));
+  actor->GetProperty()->SetOpacity(opacity);
+  actor->GetProperty()->LightingOff();
+  return actor;
+}
+
+void set_polydata(vtkActor* actor, vtkPolyData* data) {
+  auto* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+  mapper->SetInputData(data);
+  mapper->SetScalarVisibility(data->GetPointData()->GetScalars() != nullptr ||
+                              data->GetCellData()->GetScalars() != nullptr);
+  mapper->SetColorModeToDirectScalars();
+}
+
+// Which cell each path position falls in (-1 when none).
+std::vector<int> cell_of_positions(const ProjectDocument& document) {
+  const Project& p = document.project();
+  std::vector<int> cell(p.path.size(), -1);
+  for (std::size_t c = 0; c < p.visibility.cells.size(); ++c) {
+    const VisibilityCell& vc = p.visibility.cells[c];
+    for (std::size_t i = 0; i < p.path.size(); ++i) {
+      const int index = p.path.frames[i].index;
+      if (index >= vc.first_frame && index <= vc.last_frame) cell[i] = static_cast<int>(c);
+    }
+  }
+  return cell;
+}
+
+}  // namespace
+
+std::array<unsigned char, 3> cell_colour(int cell) {
+  static const std::array<std::array<unsigned char, 3>, 8> palette{{{31, 119, 180},
+                                                                    {255, 127, 14},
+                                                                    {44, 160, 44},
+                                                                    {214, 39, 40},
+                                                                    {148, 103, 189},
+                                                                    {140, 86, 75},
+                                                                    {227, 119, 194},
+                                                                    {23, 190, 207}}};
+  if (cell < 0) return {31, 119, 180};
+  return palette[static_cast<std::size_t>(cell) % palette.size()];
+}
+
+MapView::MapView(ProjectDocument& document, QWidget* parent)
+    : QVTKOpenGLNativeWidget(parent), document_(document), render_timer_(new QTimer(this)) {
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  setRenderWindow(window.Get());
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->SetBackground(kBackground[0] / 255.0, kBackground[1] / 255.0, kBackground[2] / 255.0);
+  renderer_->GetActiveCamera()->ParallelProjectionOn();
+  renderWindow()->AddRenderer(renderer_);
+  vtkNew<PanZoomStyle> style;
+  renderWindow()->GetInteractor()->SetInteractorStyle(style);
+
+  const double grey[3] = {0.6, 0.6, 0.6};
+  const double dark[3] = {0.12, 0.14, 0.18};
+  const double amber[3] = {0.95, 0.6, 0.1};
+  const double red[3] = {0.85, 0.1, 0.15};
+  const double cone[3] = {0.95, 0.75, 0.2};
+  const double envelope[3] = {0.3, 0.65, 0.95};
+  envelope_actor_ = make_actor(envelope, 1.0, 0.28);
+  cone_actor_ = make_actor(cone, 1.0, 0.55);
+  plan_actor_ = make_actor(grey, 1.5);
+  occluder_actor_ = make_actor(dark, 3.5);
+  critical_actor_ = make_actor(amber, 1.0, 0.55);
+  path_actor_ = make_actor(grey, 4.0);
+  keyframe_actor_ = make_actor(red, 1.0);
+  keyframe_actor_->GetProperty()->SetPointSize(9.0f);
+  keyframe_actor_->GetProperty()->RenderPointsAsSpheresOn();
+  current_actor_ = make_actor(dark, 1.0);
+  current_actor_->GetProperty()->SetPointSize(15.0f);
+  current_actor_->GetProperty()->RenderPointsAsSpheresOn();
+  for (vtkActor* a : {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
+                      critical_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(), current_actor_.Get()})
+    renderer_->AddActor(a);
+
+  caption_ = vtkSmartPointer<vtkTextActor>::New();
+  caption_->GetTextProperty()->SetFontSize(14);
+  caption_->GetTextProperty()->SetColor(0.2, 0.2, 0.25);
+  caption_->SetDisplayPosition(10, 8);
+  renderer_->AddViewProp(caption_);
+
+  render_timer_->setSingleShot(true);
+  render_timer_->setInterval(0);
+  connect(render_timer_, &QTimer::timeout, this, [this] { renderWindow()->Render(); });
+  connect(&document_, &ProjectDocument::changed, this, &MapView::on_document_changed);
+  connect(&document_, &ProjectDocument::current_position_changed, this, [this] {
+    rebuild_current();
+    request_render();
+  });
+  connect(&document_, &ProjectDocument::look_changed, this, [this] {
+    rebuild_current();
+    request_render();
+  });
+  setMinimumSize(200, 150);
+  on_document_changed(kEverythingChanged);
+}
+
+MapView::~MapView() = default;
+
+void MapView::set_envelope_function(EnvelopeFunction function) {
+  envelope_function_ = std::move(function);
+  rebuild_current();
+  request_render();
+}
+
+void MapView::request_render() { render_timer_->start(); }
+
+void MapView::render_now() {
+  render_timer_->stop();
+  renderWindow()->Render();
+}
+
+void MapView::on_document_changed(unsigned flags) {
+  if (flags & (kPlanChanged | kVisibilityChanged)) rebuild_plan();
+  if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
+  if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
+  rebuild_current();
+  if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
+  request_render();
+}
+
+void MapView::rebuild_plan() {
+  const Project& p = document_.project();
+  // Non-occluders by layer colour, faded; occluders dark and thick.
+  vtkNew<vtkPoints> points, occ_points;
+  vtkNew<vtkCellArray> lines, occ_lines;
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  for (const PlanSegment& s : p.plan.segments) {
+    const PlanLayer* layer = p.plan.find_layer(s.layer);
+    if (layer && !layer->visible) continue;
+    vtkPoints* pts = s.occluder ? occ_points.Get() : points.Get();
+    vtkCellArray* cells = s.occluder ? occ_lines.Get() : lines.Get();
+    const vtkIdType a = pts->InsertNextPoint(s.a.x(), s.a.y(), kPlanZ);
+    const vtkIdType b = pts->InsertNextPoint(s.b.x(), s.b.y(), kPlanZ);
+    const vtkIdType ids[2] = {a, b};
+    cells->InsertNextCell(2, ids);
+    if (!s.occluder) {
+      const auto c = faded(aci_colour(layer ? layer->color : 8), 0.6);
+      colours->InsertNextTypedTuple(c.data());
+    }
+  }
+  vtkNew<vtkPolyData> plan, occluders;
+  plan->SetPoints(points);
+  plan->SetLines(lines);
+  plan->GetCellData()->SetScalars(colours);
+  occluders->SetPoints(occ_points);
+  occluders->SetLines(occ_lines);
+  set_polydata(plan_actor_, plan);
+  set_polydata(occluder_actor_, occluders);
+
+  vtkNew<vtkPoints> cpoints;
+  vtkNew<vtkCellArray> clines;
+  for (const CriticalLine& l : p.visibility.critical_lines) {
+    const vtkIdType ids[2] = {cpoints->InsertNextPoint(l.a.x(), l.a.y(), kCriticalZ),
+                              cpoints->InsertNextPoint(l.b.x(), l.b.y(), kCriticalZ)};
+    clines->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> critical;
+  critical->SetPoints(cpoints);
+  critical->SetLines(clines);
+  set_polydata(critical_actor_, critical);
+}
+
+void MapView::rebuild_path() {
+  const Project& p = document_.project();
+  const std::vector<int> cell = cell_of_positions(document_);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  // One segment per pair of frames so each takes its cell's colour sharply.
+  for (std::size_t i = 0; i < p.path.size(); ++i)
+    points->InsertNextPoint(p.path.frames[i].x, p.path.frames[i].y, kPathZ);
+  for (std::size_t i = 0; i + 1 < p.path.size(); ++i) {
+    const vtkIdType ids[2] = {static_cast<vtkIdType>(i), static_cast<vtkIdType>(i + 1)};
+    lines->InsertNextCell(2, ids);
+    const auto c = cell_colour(cell[i]);
+    colours->InsertNextTypedTuple(c.data());
+  }
+  vtkNew<vtkPolyData> path;
+  path->SetPoints(points);
+  path->SetLines(lines);
+  path->GetCellData()->SetScalars(colours);
+  set_polydata(path_actor_, path);
+}
+
+void MapView::rebuild_keyframes() {
+  const Project& p = document_.project();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> verts;
+  for (int index : p.keyframes.indices) {
+    const PathFrame* f = p.path.find_frame(index);
+    if (!f) continue;
+    const vtkIdType id = points->InsertNextPoint(f->x, f->y, kKeyframeZ);
+    verts->InsertNextCell(1, &id);
+  }
+  vtkNew<vtkPolyData> keyframes;
+  keyframes->SetPoints(points);
+  keyframes->SetVerts(verts);
+  set_polydata(keyframe_actor_, keyframes);
+}
+
+void MapView::rebuild_current() {
+  const Project& p = document_.project();
+  const int position = document_.current_position();
+  vtkNew<vtkPolyData> marker, cone, envelope;
+  std::string caption;
+  if (!p.path.empty() && position >= 0 && position < static_cast<int>(p.path.size())) {
+    const PathFrame& f = p.path.frames[position];
+    vtkNew<vtkPoints> mp;
+    vtkNew<vtkCellArray> mv;
+    const vtkIdType id = mp->InsertNextPoint(f.x, f.y, kCurrentZ);
+    mv->InsertNextCell(1, &id);
+    marker->SetPoints(mp);
+    marker->SetVerts(mv);
+
+    // The panorama view's cone: world angle = heading - azimuth (azimuth grows clockwise).
+    const PlanExtents e = p.plan.extents();
+    const double reach = e.valid ? 0.08 * e.size().norm() : 1.0;
+    const double centre = f.heading - document_.look_azimuth();
+    const double half = 0.5 * document_.look_fov();
+    vtkNew<vtkPoints> cp;
+    vtkNew<vtkCellArray> cpolys;
+    cp->InsertNextPoint(f.x, f.y, kConeZ);
+    const int steps = 12;
+    for (int k = 0; k <= steps; ++k) {
+      const double a = centre - half + 2.0 * half * k / steps;
+      cp->InsertNextPoint(f.x + reach * std::cos(a), f.y + reach * std::sin(a), kConeZ);
+    }
+    for (int k = 0; k < steps; ++k) {
+      const vtkIdType tri[3] = {0, k + 1, k + 2};
+      cpolys->InsertNextCell(3, tri);
+    }
+    cone->SetPoints(cp);
+    cone->SetPolys(cpolys);
+
+    // The envelope is star-shaped around the viewpoint: a fan from it is a valid triangulation.
+    if (envelope_function_) {
+      const std::vector<Eigen::Vector2d> polygon = envelope_function_(f.position());
+      if (polygon.size() >= 3) {
+        vtkNew<vtkPoints> ep;
+        vtkNew<vtkCellArray> epolys;
+        ep->InsertNextPoint(f.x, f.y, kEnvelopeZ);
+        for (const auto& q : polygon) ep->InsertNextPoint(q.x(), q.y(), kEnvelopeZ);
+        const vtkIdType n = static_cast<vtkIdType>(polygon.size());
+        for (vtkIdType k = 0; k < n; ++k) {
+          const vtkIdType tri[3] = {0, 1 + k, 1 + (k + 1) % n};
+          epolys->InsertNextCell(3, tri);
+        }
+        envelope->SetPoints(ep);
+        envelope->SetPolys(epolys);
+        double area = 0.0;
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+          const auto& a = polygon[k];
+          const auto& b = polygon[(k + 1) % polygon.size()];
+          area += a.x() * b.y() - a.y() * b.x();
+        }
+        caption = " · envelope " + std::to_string(static_cast<int>(std::round(0.5 * std::fabs(area)))) + " m²";
+      }
+    }
+    char head[128];
+    std::snprintf(head, sizeof head, "frame %d  (%.2f, %.2f) m  heading %.0f°", f.index, f.x, f.y,
+                  degrees(f.heading));
+    caption = head + caption;
+  }
+  set_polydata(current_actor_, marker);
+  set_polydata(cone_actor_, cone);
+  set_polydata(envelope_actor_, envelope);
+  caption_->SetInput(caption.c_str());
+}
+
+void MapView::reset_camera() {
+  const Project& p = document_.project();
+  Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  Eigen::Vector2d hi = -lo;
+  const PlanExtents e = p.plan.extents();
+  if (e.valid) {
+    lo = lo.cwiseMin(e.min);
+    hi = hi.cwiseMax(e.max);
+  }
+  for (const PathFrame& f : p.path.frames) {
+    lo = lo.cwiseMin(f.position());
+    hi = hi.cwiseMax(f.position());
+  }
+  if (lo.x() > hi.x()) {
+    lo = {-5, -5};
+    hi = {5, 5};
+  }
+  const Eigen::Vector2d centre = 0.5 * (lo + hi);
+  const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d(1.0, 1.0));
+  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->SetFocalPoint(centre.x(), centre.y(), 0.0);
+  camera->SetPosition(centre.x(), centre.y(), 100.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetParallelScale(0.55 * std::max(size.y(), size.x() / aspect));
+  camera->SetClippingRange(1.0, 200.0);
+  camera_fitted_ = e.valid || !p.path.empty();
+  request_render();
+}
+
+Eigen::Vector2d MapView::plan_point_at(const QPoint& widget_pixel) {
+  const double dpr = devicePixelRatioF();
+  const int* size = renderWindow()->GetSize();
+  renderer_->SetDisplayPoint(widget_pixel.x() * dpr, size[1] - 1 - widget_pixel.y() * dpr, 0.0);
+  renderer_->DisplayToWorld();
+  const double* w = renderer_->GetWorldPoint();
+  const double h = w[3] != 0.0 ? w[3] : 1.0;
+  return {w[0] / h, w[1] / h};
+}
+
+QPoint MapView::widget_pixel_of(const Eigen::Vector2d& plan_point) {
+  const double dpr = devicePixelRatioF();
+  const int* size = renderWindow()->GetSize();
+  renderer_->SetWorldPoint(plan_point.x(), plan_point.y(), 0.0, 1.0);
+  renderer_->WorldToDisplay();
+  const double* d = renderer_->GetDisplayPoint();
+  return QPoint(static_cast<int>(std::lround(d[0] / dpr)), static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr)));
+}
+
+bool MapView::event(QEvent* e) {
+  if (e->type() == QEvent::MouseButtonPress) {
+    auto* m = static_cast<QMouseEvent*>(e);
+    if (m->button() == Qt::LeftButton) press_pixel_ = m->pos();
+  } else if (e->type() == QEvent::MouseButtonRelease) {
+    auto* m = static_cast<QMouseEvent*>(e);
+    if (m->button() == Qt::LeftButton && (m->pos() - press_pixel_).manhattanLength() <= 4) {
+      const bool handled = QVTKOpenGLNativeWidget::event(e);
+      handle_click(m->pos());
+      return handled;
+    }
+  }
+  return QVTKOpenGLNativeWidget::event(e);
+}
+
+void MapView::handle_click(const QPoint& pixel) {
+  const Project& p = document_.project();
+  if (p.path.empty()) return;
+  const Eigen::Vector2d q = plan_point_at(pixel);
+  const double metres_per_pixel =
+      2.0 * renderer_->GetActiveCamera()->GetParallelScale() / std::max(1, height());
+  int best = -1;
+  double best_distance = 15.0 * metres_per_pixel;  // a click within 15 pixels of the path counts
+  for (std::size_t i = 0; i < p.path.size(); ++i) {
+    const double d = (p.path.frames[i].position() - q).norm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = static_cast<int>(i);
+    }
+  }
+  if (best < 0) return;
+  document_.set_current_position(best);
+  emit frame_clicked(best);
+}
+
+}  // namespace plenopath::widgets

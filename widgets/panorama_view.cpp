@@ -1,0 +1,324 @@
+#include "widgets/panorama_view.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLBuffer>
+#include <QOpenGLContext>
+#include <QOpenGLShaderProgram>
+#include <QOpenGLVertexArrayObject>
+#include <QPainter>
+#include <QWheelEvent>
+#include <algorithm>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "model/camera_path.h"
+#include "rig/spherical.h"
+#include "widgets/frame_provider.h"
+#include "widgets/project_document.h"
+
+namespace plenopath::widgets {
+
+namespace {
+
+const char* kVertexShader = R"(#version 150
+in vec2 corner;
+out vec2 ndc;
+void main() {
+  ndc = corner;
+  gl_Position = vec4(corner, 0.0, 1.0);
+}
+)";
+
+// Perspective mode: the ray through a screen pixel, in the camera frame (+x forward, +y left, +z up), is
+// forward + s*right + t*up; its azimuth a = atan2(-y, x) (grows to the right) and elevation e map to the
+// equirect texture by u = (a + pi) / 2pi, v = (pi/2 - e) / pi with texture row 0 = the image's top row.
+// Whole-image mode: the texture letterboxed to the widget.
+const char* kFragmentShader = R"(#version 150
+uniform sampler2D equirect;
+uniform int whole_image;
+uniform vec3 forward;
+uniform vec3 left;
+uniform vec3 up;
+uniform float tan_half_fov;
+uniform float aspect;
+uniform vec2 image_scale;
+in vec2 ndc;
+out vec4 colour;
+const float PI = 3.14159265358979;
+void main() {
+  vec2 uv;
+  if (whole_image == 1) {
+    vec2 p = ndc / image_scale;
+    if (abs(p.x) > 1.0 || abs(p.y) > 1.0) { colour = vec4(0.12, 0.12, 0.14, 1.0); return; }
+    uv = vec2(0.5 * p.x + 0.5, 0.5 - 0.5 * p.y);
+  } else {
+    vec3 d = forward - ndc.x * tan_half_fov * left + ndc.y * tan_half_fov / aspect * up;
+    float azimuth = atan(-d.y, d.x);
+    float elevation = atan(d.z, length(d.xy));
+    uv = vec2((azimuth + PI) / (2.0 * PI), (0.5 * PI - elevation) / PI);
+  }
+  colour = vec4(texture(equirect, uv).rgb, 1.0);
+}
+)";
+
+constexpr double kMinFov = 0.35;  // 20 degrees
+constexpr double kMaxFov = 2.1;   // 120 degrees
+
+}  // namespace
+
+PanoramaView::PanoramaView(ProjectDocument& document, FrameProvider& frames, QWidget* parent)
+    : QOpenGLWidget(parent), document_(document), frames_(frames) {
+  setFocusPolicy(Qt::StrongFocus);
+  setMinimumSize(240, 160);
+  connect(&document_, &ProjectDocument::current_position_changed, this, [this] { show_current(); });
+  connect(&document_, &ProjectDocument::changed, this, [this](unsigned flags) {
+    if (flags & (kCaptureChanged | kPathChanged)) {
+      shown_position_ = -1;
+      show_current();
+    }
+    if (flags & kHotspotsChanged) update();
+  });
+  connect(&frames_, &FrameProvider::frame_ready, this, [this](int position, const QImage& image) {
+    if (position != document_.current_position()) return;
+    pending_image_ = image;
+    pending_position_ = position;
+    message_.clear();
+    update();
+  });
+  connect(&frames_, &FrameProvider::frame_failed, this, [this](int position, const QString& message) {
+    if (position != document_.current_position()) return;
+    message_ = message;
+    update();
+  });
+  show_current();
+}
+
+PanoramaView::~PanoramaView() {
+  if (context()) {
+    makeCurrent();
+    release_gl();
+    doneCurrent();
+  }
+}
+
+void PanoramaView::release_gl() {
+  if (texture_) glDeleteTextures(1, &texture_);
+  texture_ = 0;
+  quad_.reset();
+  vao_.reset();
+  program_.reset();
+}
+
+void PanoramaView::show_current() {
+  if (document_.frame_count() == 0) {
+    message_ = document_.project().capture.empty() ? tr("No capture: import one with File ▸ Import capture")
+                                                  : QString();
+    update();
+    return;
+  }
+  frames_.request(document_.current_position());
+}
+
+void PanoramaView::set_look(double azimuth, double elevation, double fov) {
+  azimuth_ = wrap_angle(azimuth);
+  elevation_ = std::clamp(elevation, -1.45, 1.45);
+  fov_ = std::clamp(fov, kMinFov, kMaxFov);
+  document_.set_look(azimuth_, fov_);
+  update();
+}
+
+void PanoramaView::set_equirect_mode(bool whole_image) {
+  if (whole_image == equirect_mode_) return;
+  equirect_mode_ = whole_image;
+  emit equirect_mode_changed(whole_image);
+  update();
+}
+
+void PanoramaView::initializeGL() {
+  initializeOpenGLFunctions();
+  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] {
+    makeCurrent();
+    release_gl();
+    doneCurrent();
+  });
+  program_ = std::make_unique<QOpenGLShaderProgram>();
+  program_->addShaderFromSourceCode(QOpenGLShader::Vertex, kVertexShader);
+  program_->addShaderFromSourceCode(QOpenGLShader::Fragment, kFragmentShader);
+  program_->bindAttributeLocation("corner", 0);
+  if (!program_->link()) message_ = tr("Panorama shader failed: %1").arg(program_->log());
+  vao_ = std::make_unique<QOpenGLVertexArrayObject>();
+  vao_->create();
+  vao_->bind();
+  quad_ = std::make_unique<QOpenGLBuffer>(QOpenGLBuffer::VertexBuffer);
+  quad_->create();
+  quad_->bind();
+  const GLfloat corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+  quad_->allocate(corners, sizeof corners);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  vao_->release();
+  glGenTextures(1, &texture_);
+  texture_size_ = QSize();
+  // A new context lost the old texture: upload the shown frame again.
+  if (shown_position_ >= 0) {
+    pending_image_ = frames_.cached(shown_position_);
+    pending_position_ = shown_position_;
+  }
+}
+
+void PanoramaView::upload_pending_image() {
+  if (pending_image_.isNull()) return;
+  GLint max_size = 4096;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  QImage image = pending_image_.convertToFormat(QImage::Format_RGBA8888);
+  if (image.width() > max_size || image.height() > max_size)
+    image = image.scaled(std::min(image.width(), static_cast<int>(max_size)),
+                         std::min(image.height(), static_cast<int>(max_size) / 2), Qt::KeepAspectRatio,
+                         Qt::SmoothTransformation);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  // Row 0 of the image (the zenith) goes first, so texture v = 0 is the top row.
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, image.width(), image.height(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               image.constBits());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // across the seam
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  texture_size_ = pending_image_.size();
+  shown_position_ = pending_position_;
+  pending_image_ = QImage();
+  emit image_shown(shown_position_);
+}
+
+void PanoramaView::paintGL() {
+  glClearColor(0.12f, 0.12f, 0.14f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  upload_pending_image();
+  if (program_ && program_->isLinked() && texture_size_.isValid()) {
+    const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+    const Eigen::Vector3d forward = angles_to_bearing({azimuth_, elevation_});
+    const Eigen::Vector3d left = angles_to_bearing({azimuth_ - M_PI / 2, 0.0});
+    const Eigen::Vector3d up = forward.cross(left).normalized();
+    program_->bind();
+    program_->setUniformValue("equirect", 0);
+    program_->setUniformValue("whole_image", equirect_mode_ ? 1 : 0);
+    program_->setUniformValue("forward", QVector3D(forward.x(), forward.y(), forward.z()));
+    program_->setUniformValue("left", QVector3D(left.x(), left.y(), left.z()));
+    program_->setUniformValue("up", QVector3D(up.x(), up.y(), up.z()));
+    program_->setUniformValue("tan_half_fov", static_cast<GLfloat>(std::tan(0.5 * fov_)));
+    program_->setUniformValue("aspect", static_cast<GLfloat>(aspect));
+    // Letterbox the 2:1 image in whole-image mode.
+    const double image_aspect = texture_size_.width() / static_cast<double>(texture_size_.height());
+    const QVector2D scale = aspect > image_aspect ? QVector2D(image_aspect / aspect, 1.0f)
+                                                  : QVector2D(1.0f, aspect / image_aspect);
+    program_->setUniformValue("image_scale", scale);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    vao_->bind();
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    vao_->release();
+    program_->release();
+  }
+  draw_overlay();
+}
+
+void PanoramaView::draw_overlay() {
+  QPainter painter(this);
+  painter.setRenderHint(QPainter::Antialiasing);
+  const Project& p = document_.project();
+  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+  const double image_aspect =
+      texture_size_.isValid() ? texture_size_.width() / static_cast<double>(texture_size_.height()) : 2.0;
+  const QSizeF box = aspect > image_aspect ? QSizeF(height() * image_aspect, height())
+                                           : QSizeF(width(), width() / image_aspect);
+  const QPointF box_origin((width() - box.width()) / 2, (height() - box.height()) / 2);
+
+  // Screen point of a direction, or false when it is behind the viewer.
+  auto to_screen = [&](const SphericalAngles& angles, QPointF& out) {
+    if (equirect_mode_) {
+      const Eigen::Vector2d px = angles_to_equirect(angles, 1000, 500);
+      out = box_origin + QPointF(px.x() / 1000.0 * box.width(), px.y() / 500.0 * box.height());
+      return true;
+    }
+    const Eigen::Vector3d d = angles_to_bearing(angles);
+    const Eigen::Vector3d forward = angles_to_bearing({azimuth_, elevation_});
+    const Eigen::Vector3d left = angles_to_bearing({azimuth_ - M_PI / 2, 0.0});
+    const Eigen::Vector3d up = forward.cross(left).normalized();
+    const double z = d.dot(forward);
+    if (z <= 1e-3) return false;
+    const double t = std::tan(0.5 * fov_);
+    const double sx = -d.dot(left) / z / t;
+    const double sy = d.dot(up) / z / (t / aspect);
+    out = QPointF((sx * 0.5 + 0.5) * width(), (0.5 - sy * 0.5) * height());
+    return true;
+  };
+
+  // Hotspots authored in this frame.
+  const int index = document_.frame_index_at(document_.current_position());
+  painter.setPen(QPen(QColor(255, 200, 40), 2));
+  painter.setBrush(QColor(255, 200, 40, 50));
+  for (const Hotspot& h : p.hotspots) {
+    if (h.frame != index || h.image_corners.size() < 2) continue;
+    QPolygonF polygon;
+    bool visible = true;
+    for (const auto& c : h.image_corners) {
+      QPointF q;
+      visible = visible && to_screen({c.x(), c.y()}, q);
+      polygon << q;
+    }
+    if (!visible) continue;
+    painter.drawPolygon(polygon);
+    painter.drawText(polygon.boundingRect().topLeft() + QPointF(4, -4), QString::fromStdString(h.title));
+  }
+
+  // Caption: frame, look direction; or why there is nothing to show.
+  painter.setPen(Qt::white);
+  QFont font = painter.font();
+  font.setPointSizeF(9.5);
+  painter.setFont(font);
+  QString caption;
+  if (shown_position_ >= 0) {
+    caption = equirect_mode_ ? tr("frame %1 · whole image").arg(document_.frame_index_at(shown_position_))
+                             : tr("frame %1 · look %2° / %3° · fov %4°")
+                                   .arg(document_.frame_index_at(shown_position_))
+                                   .arg(degrees(azimuth_), 0, 'f', 0)
+                                   .arg(degrees(elevation_), 0, 'f', 0)
+                                   .arg(degrees(fov_), 0, 'f', 0);
+  }
+  const QRectF bar(0, height() - 22, width(), 22);
+  painter.fillRect(bar, QColor(0, 0, 0, 110));
+  painter.drawText(bar.adjusted(8, 0, -8, 0), Qt::AlignVCenter | Qt::AlignLeft, caption);
+  if (!message_.isEmpty()) painter.drawText(rect().adjusted(12, 12, -12, -30), Qt::AlignCenter | Qt::TextWordWrap, message_);
+}
+
+void PanoramaView::mousePressEvent(QMouseEvent* event) { last_mouse_ = event->pos(); }
+
+void PanoramaView::mouseMoveEvent(QMouseEvent* event) {
+  if (!(event->buttons() & Qt::LeftButton) || equirect_mode_) return;
+  const QPoint delta = event->pos() - last_mouse_;
+  last_mouse_ = event->pos();
+  // Grab-and-drag: the scene follows the mouse, so dragging right looks left.
+  const double radians_per_pixel = fov_ / std::max(1, width());
+  set_look(azimuth_ - delta.x() * radians_per_pixel, elevation_ + delta.y() * radians_per_pixel, fov_);
+}
+
+void PanoramaView::wheelEvent(QWheelEvent* event) {
+  const double steps = event->angleDelta().y() / 120.0;
+  set_look(azimuth_, elevation_, fov_ * std::pow(0.9, steps));
+}
+
+void PanoramaView::keyPressEvent(QKeyEvent* event) {
+  switch (event->key()) {
+    case Qt::Key_Right:
+    case Qt::Key_PageDown: document_.step(event->modifiers() & Qt::ShiftModifier ? 10 : 1); break;
+    case Qt::Key_Left:
+    case Qt::Key_PageUp: document_.step(event->modifiers() & Qt::ShiftModifier ? -10 : -1); break;
+    case Qt::Key_Home: document_.set_current_position(0); break;
+    case Qt::Key_End: document_.set_current_position(document_.frame_count() - 1); break;
+    case Qt::Key_E: set_equirect_mode(!equirect_mode_); break;
+    default: QOpenGLWidget::keyPressEvent(event);
+  }
+}
+
+}  // namespace plenopath::widgets

@@ -1,0 +1,74 @@
+#pragma once
+// The panorama: a perspective view of the current frame's equirectangular image, drawn by a fragment
+// shader that turns each screen pixel into a bearing and looks it up per rig/spherical.h's convention.
+// Drag to look around, wheel to change the field of view, Left/Right (or PageUp/PageDown) to step frames,
+// E to toggle the whole equirectangular image with the hotspots outlined.
+#include <QImage>
+#include <QOpenGLFunctions>
+#include <QOpenGLWidget>
+#include <memory>
+
+class QOpenGLShaderProgram;
+class QOpenGLVertexArrayObject;
+class QOpenGLBuffer;
+
+namespace plenopath::widgets {
+
+class FrameProvider;
+class ProjectDocument;
+
+class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
+  Q_OBJECT
+ public:
+  PanoramaView(ProjectDocument& document, FrameProvider& frames, QWidget* parent = nullptr);
+  ~PanoramaView() override;
+
+  // Look direction (radians): azimuth grows to the right, elevation up; horizontal field of view.
+  void set_look(double azimuth, double elevation, double fov);
+  double azimuth() const { return azimuth_; }
+  double elevation() const { return elevation_; }
+  double fov() const { return fov_; }
+
+  void set_equirect_mode(bool whole_image);
+  bool equirect_mode() const { return equirect_mode_; }
+
+  // Position whose image is on screen (-1 while none).
+  int shown_position() const { return shown_position_; }
+
+ signals:
+  void image_shown(int position);
+  void equirect_mode_changed(bool whole_image);
+
+ protected:
+  void initializeGL() override;
+  void paintGL() override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  void show_current();
+  void upload_pending_image();
+  void draw_overlay();
+  void release_gl();
+
+  ProjectDocument& document_;
+  FrameProvider& frames_;
+  std::unique_ptr<QOpenGLShaderProgram> program_;
+  std::unique_ptr<QOpenGLVertexArrayObject> vao_;
+  std::unique_ptr<QOpenGLBuffer> quad_;
+  unsigned texture_ = 0;
+  QImage pending_image_;  // uploaded at the next paint
+  QSize texture_size_;
+  int pending_position_ = -1;
+  int shown_position_ = -1;
+  QString message_;
+  double azimuth_ = 0.0;
+  double elevation_ = 0.0;
+  double fov_ = 1.5707963267948966;
+  bool equirect_mode_ = false;
+  QPoint last_mouse_;
+};
+
+}  // namespace plenopath::widgets

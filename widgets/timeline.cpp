@@ -1,0 +1,182 @@
+#include "widgets/timeline.h"
+
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QSignalBlocker>
+#include <QSpinBox>
+#include <QStyle>
+#include <QTimer>
+#include <QToolButton>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
+
+#include "widgets/map_view.h"
+#include "widgets/project_document.h"
+
+namespace plenopath::widgets {
+
+TimelineStrip::TimelineStrip(ProjectDocument& document, QWidget* parent) : QWidget(parent), document_(document) {
+  setMinimumHeight(80);
+  setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Preferred);
+  connect(&document_, &ProjectDocument::changed, this, [this] { update(); });
+  connect(&document_, &ProjectDocument::current_position_changed, this, [this] { update(); });
+}
+
+QRectF TimelineStrip::plot_rect() const { return QRectF(8, 6, width() - 16, height() - 22); }
+
+int TimelineStrip::position_at(double x) const {
+  const int n = document_.frame_count();
+  if (n <= 1) return 0;
+  const QRectF r = plot_rect();
+  return std::clamp(static_cast<int>(std::lround((x - r.left()) / r.width() * (n - 1))), 0, n - 1);
+}
+
+double TimelineStrip::x_of(int position) const {
+  const int n = document_.frame_count();
+  const QRectF r = plot_rect();
+  return n <= 1 ? r.left() : r.left() + r.width() * position / (n - 1.0);
+}
+
+void TimelineStrip::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  painter.setRenderHint(QPainter::Antialiasing);
+  painter.fillRect(rect(), palette().base());
+  const QRectF r = plot_rect();
+  const Project& p = document_.project();
+  const int n = document_.frame_count();
+  if (n == 0) {
+    painter.setPen(palette().color(QPalette::PlaceholderText));
+    painter.drawText(rect(), Qt::AlignCenter, tr("No frames yet"));
+    return;
+  }
+  // Cell bands: a light band per cell across the plot, a saturated strip along the bottom.
+  double max_area = 0.0;
+  for (const VisibilityCell& c : p.visibility.cells) max_area = std::max(max_area, c.area_mean);
+  for (std::size_t k = 0; k < p.visibility.cells.size(); ++k) {
+    const VisibilityCell& c = p.visibility.cells[k];
+    const int a = document_.position_of_frame_index(c.first_frame);
+    const int b = document_.position_of_frame_index(c.last_frame);
+    if (a < 0 || b < 0) continue;
+    const auto rgb = cell_colour(static_cast<int>(k));
+    const QColor colour(rgb[0], rgb[1], rgb[2]);
+    const double x0 = x_of(a), x1 = std::max(x_of(b), x0 + 1.0);
+    QColor light = colour;
+    light.setAlpha(40);
+    painter.fillRect(QRectF(x0, r.top(), x1 - x0, r.height()), light);
+    painter.fillRect(QRectF(x0, r.bottom() - 6, x1 - x0, 6), colour);
+    // Envelope area of the cell as a step of the plot.
+    if (max_area > 0) {
+      const double y = r.bottom() - 8 - (r.height() - 12) * c.area_mean / max_area;
+      painter.setPen(QPen(colour.darker(130), 2));
+      painter.drawLine(QPointF(x0, y), QPointF(x1, y));
+    }
+  }
+  if (max_area > 0) {
+    painter.setPen(palette().color(QPalette::Text));
+    painter.drawText(r.adjusted(4, 2, 0, 0), Qt::AlignLeft | Qt::AlignTop,
+                     tr("envelope area (max %1 m²)").arg(max_area, 0, 'f', 0));
+  } else if (p.visibility.cells.empty()) {
+    painter.setPen(palette().color(QPalette::PlaceholderText));
+    painter.drawText(r.adjusted(4, 2, 0, 0), Qt::AlignLeft | Qt::AlignTop,
+                     tr("no visibility cells yet (Process ▸ Compute visibility)"));
+  }
+  // Keyframe ticks.
+  painter.setPen(QPen(QColor(210, 30, 40), 1.5));
+  for (int index : p.keyframes.indices) {
+    const int position = document_.position_of_frame_index(index);
+    if (position < 0) continue;
+    const double x = x_of(position);
+    painter.drawLine(QPointF(x, r.bottom() + 1), QPointF(x, r.bottom() + 12));
+  }
+  // Frame axis.
+  painter.setPen(palette().color(QPalette::Mid));
+  painter.drawLine(QPointF(r.left(), r.bottom()), QPointF(r.right(), r.bottom()));
+  // Play head.
+  const double x = x_of(document_.current_position());
+  painter.setPen(QPen(palette().color(QPalette::Highlight), 2));
+  painter.drawLine(QPointF(x, 0), QPointF(x, height()));
+}
+
+void TimelineStrip::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton) document_.set_current_position(position_at(event->pos().x()));
+}
+
+void TimelineStrip::mouseMoveEvent(QMouseEvent* event) {
+  if (event->buttons() & Qt::LeftButton) document_.set_current_position(position_at(event->pos().x()));
+}
+
+TimelinePanel::TimelinePanel(ProjectDocument& document, QWidget* parent)
+    : QWidget(parent),
+      document_(document),
+      strip_(new TimelineStrip(document, this)),
+      play_(new QToolButton(this)),
+      frame_box_(new QSpinBox(this)),
+      info_(new QLabel(this)),
+      play_timer_(new QTimer(this)) {
+  play_->setCheckable(true);
+  play_->setIcon(style()->standardIcon(QStyle::SP_MediaPlay));
+  play_->setToolTip(tr("Play at the capture's frame rate (Space)"));
+  play_->setShortcut(Qt::Key_Space);
+  frame_box_->setToolTip(tr("Current frame (position along the path)"));
+  auto* controls = new QHBoxLayout;
+  controls->addWidget(play_);
+  controls->addWidget(frame_box_);
+  controls->addWidget(info_, 1);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 2, 4, 2);
+  layout->addLayout(controls);
+  layout->addWidget(strip_, 1);
+
+  connect(play_, &QToolButton::toggled, this, &TimelinePanel::set_playing);
+  connect(frame_box_, qOverload<int>(&QSpinBox::valueChanged), this,
+          [this](int value) { document_.set_current_position(value); });
+  connect(play_timer_, &QTimer::timeout, this, [this] {
+    if (document_.current_position() + 1 >= document_.frame_count()) {
+      set_playing(false);
+      return;
+    }
+    document_.step(1);
+  });
+  connect(&document_, &ProjectDocument::changed, this, [this] { update_controls(); });
+  connect(&document_, &ProjectDocument::current_position_changed, this, [this] { update_controls(); });
+  update_controls();
+}
+
+void TimelinePanel::set_playing(bool playing) {
+  if (playing) {
+    if (document_.current_position() + 1 >= document_.frame_count()) document_.set_current_position(0);
+    const double rate = document_.project().capture.frame_rate > 0 ? document_.project().capture.frame_rate : 30.0;
+    play_timer_->start(static_cast<int>(std::lround(1000.0 / rate)));
+  } else {
+    play_timer_->stop();
+  }
+  const QSignalBlocker block(play_);
+  play_->setChecked(playing);
+  play_->setIcon(style()->standardIcon(playing ? QStyle::SP_MediaPause : QStyle::SP_MediaPlay));
+}
+
+bool TimelinePanel::playing() const { return play_timer_->isActive(); }
+
+void TimelinePanel::update_controls() {
+  const int n = document_.frame_count();
+  const int position = document_.current_position();
+  {
+    const QSignalBlocker block(frame_box_);
+    frame_box_->setRange(0, std::max(0, n - 1));
+    frame_box_->setValue(position);
+  }
+  const Project& p = document_.project();
+  const double rate = p.capture.frame_rate > 0 ? p.capture.frame_rate : 30.0;
+  QString text = tr("of %1 · %2 s").arg(n).arg(position / rate, 0, 'f', 2);
+  if (!p.path.empty() && position < static_cast<int>(p.path.size())) {
+    const std::vector<double> s = p.path.arc_lengths();
+    text += tr(" · %1 m of %2 m").arg(s[position], 0, 'f', 1).arg(s.back(), 0, 'f', 1);
+  }
+  text += tr(" · %1 keyframes").arg(p.keyframes.indices.size());
+  info_->setText(text);
+}
+
+}  // namespace plenopath::widgets
