@@ -344,12 +344,14 @@ inline cv::Vec3f sample_bilinear(const cv::Mat& img, double x, double y, bool pe
 // Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel:
 // the level whose texels are about the pixel's footprint.
 inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
+  // Level L has texels 2^L level-0 texels wide; take the first whose texels are at least the footprint, so
+  // the image stays band-limited (no texture aliasing, smooth under resampling and sub-pixel motion).
   int level = 0;
-  if (footprint >= 2.0) {
+  if (footprint > 1.0) {
     const float f = static_cast<float>(footprint);
     std::uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
-    level = std::min(static_cast<int>((bits >> 23) & 0xff) - 127, static_cast<int>(t.levels.size()) - 1);
+    level = std::min(static_cast<int>((bits >> 23) & 0xff) - 126, static_cast<int>(t.levels.size()) - 1);
   }
   const double scale = 1.0 / static_cast<double>(1 << level);
   return sample_bilinear(t.levels[level], x * scale, y * scale, periodic);
@@ -680,6 +682,44 @@ RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, con
   result.distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
   result.bgr = shade(ctx, ray, hit, row, result.distance, pixel_angle);
   return result;
+}
+
+RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin, const cv::Mat& directions,
+                                   double pixel_angle, const RenderOptions& options, int frame_index) {
+  if (!scene.textures) throw Error("render_directions: the scene was not built with build_synthetic_scene");
+  if (directions.type() != CV_64FC3) throw Error("render_directions: directions must be CV_64FC3");
+  if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
+  const FrameContext ctx = make_context(scene, options, origin, frame_index);
+  RenderedPanorama out;
+  out.rgb.create(directions.size(), CV_8UC3);
+  out.depth.create(directions.size(), CV_32F);
+  auto body = [&](const cv::Range& r) {
+    ColumnRay ray;
+    for (int v = r.start; v < r.end; ++v)
+      for (int u = 0; u < directions.cols; ++u) {
+        const cv::Vec3d& dv = directions.at<cv::Vec3d>(v, u);
+        const Eigen::Vector3d d = Eigen::Vector3d(dv[0], dv[1], dv[2]).normalized();
+        const double horizontal = std::hypot(d.x(), d.y());
+        if (horizontal < 1e-12) {  // straight up or down: rare, use the general path
+          const RayHit hit = trace_ray(scene, origin, d, options, frame_index);
+          out.rgb.at<cv::Vec3b>(v, u) = hit.bgr;
+          out.depth.at<float>(v, u) = static_cast<float>(hit.distance);
+          continue;
+        }
+        cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray);
+        const RayRow row(d.z() / horizontal, horizontal, d.z());
+        const Hit hit = first_hit(ctx, ray, row);
+        const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
+        out.rgb.at<cv::Vec3b>(v, u) = shade(ctx, ray, hit, row, distance, pixel_angle);
+        out.depth.at<float>(v, u) = static_cast<float>(distance);
+      }
+  };
+  if (options.threads == 1)
+    body(cv::Range(0, directions.rows));
+  else
+    cv::parallel_for_(cv::Range(0, directions.rows), body, std::max(1, cv::getNumThreads()) * 4);
+  add_noise(out.rgb, options, frame_index);
+  return out;
 }
 
 std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options, int frame_index) {

@@ -138,6 +138,12 @@ struct RayHit {
 RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                  const RenderOptions& options, int frame_index = 0);
 
+// Renders an image whose pixel (u, v) looks from `origin` along directions(v, u) (CV_64FC3, plan frame, need
+// not be unit): pinhole heads, cube faces. `pixel_angle` (radians) is the angular size of a pixel, for
+// texture filtering. Depth is the distance along the ray (0 = no hit).
+RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin, const cv::Mat& directions,
+                                   double pixel_angle, const RenderOptions& options, int frame_index = 0);
+
 // Where the people are at a frame (centre, radius, height), for tests and overlays.
 struct PersonPose {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
