@@ -5,7 +5,7 @@
 namespace plenopath {
 
 ceres::CostFunction* PlanarBearingCost::Create(const Eigen::Vector3d& observed_bearing) {
-  return new ceres::AutoDiffCostFunction<PlanarBearingCost, 2, 3, 3>(new PlanarBearingCost(observed_bearing));
+  return new ceres::AutoDiffCostFunction<PlanarBearingCost, 3, 3, 3>(new PlanarBearingCost(observed_bearing));
 }
 
 }  // namespace plenopath

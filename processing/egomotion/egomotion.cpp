@@ -52,19 +52,18 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
     Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
     Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
     for (size_t k = 0; k < points.size(); ++k) {
-      double r[2];
+      double r[3];
       costs[k](p.data(), points[k].data(), r);
-      Eigen::Matrix<double, 2, 3> j;
+      Eigen::Matrix<double, 3, 3> j;
       for (int d = 0; d < 3; ++d) {
         Eigen::Vector3d q = p;
         const double h = 1e-7;
         q[d] += h;
-        double rq[2];
+        double rq[3];
         costs[k](q.data(), points[k].data(), rq);
-        j(0, d) = (rq[0] - r[0]) / h;
-        j(1, d) = (rq[1] - r[1]) / h;
+        for (int e = 0; e < 3; ++e) j(e, d) = (rq[e] - r[e]) / h;
       }
-      const Eigen::Vector2d rv(r[0], r[1]);
+      const Eigen::Vector3d rv(r[0], r[1], r[2]);
       const double n = rv.norm();
       const double w = n <= huber ? 1.0 : huber / n;
       jtj += w * j.transpose() * j;
@@ -94,6 +93,7 @@ std::string EgomotionOptions::check() const {
   if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) o << "keyframe_min_shared must be in (0, 1); ";
   if (!(min_triangulation_deg > 0)) o << "min_triangulation_deg must be > 0; ";
   if (!(max_initial_error_deg > 0)) o << "max_initial_error_deg must be > 0; ";
+  if (min_point_keyframes < 2) o << "min_point_keyframes must be >= 2; ";
   if (resection_min_points < 3) o << "resection_min_points must be >= 3; ";
   if (camera_height_m < 0) o << "camera_height_m must be >= 0 (0 = unknown); ";
   if (scale_distance_m < 0) o << "scale_distance_m must be >= 0; ";
@@ -341,7 +341,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       if (ray_error(kf_pose[k], point[t], b) > opt.max_initial_error_deg * deg) continue;
       obs.push_back({k, static_cast<int>(problem.points.size()), b});
     }
-    if (obs.size() < 2) continue;
+    if (static_cast<int>(obs.size()) < opt.min_point_keyframes) continue;
     point_of_track[t] = static_cast<int>(problem.points.size());
     problem.points.push_back(point[t]);
     problem.observations.insert(problem.observations.end(), obs.begin(), obs.end());

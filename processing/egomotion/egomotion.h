@@ -35,6 +35,7 @@ struct EgomotionOptions {
   double keyframe_min_shared = 0.5;     // fraction of the last keyframe's tracks still seen; below it, cut
   double min_triangulation_deg = 1.0;   // rays of a point must span at least this angle
   double max_initial_error_deg = 1.0;   // observations this far off after initialisation are dropped
+  int min_point_keyframes = 3;          // a point enters the refinement when seen from this many keyframes
   int resection_min_points = 12;        // fewer points seen: the frame's pose is bridged (interpolated)
   // Metric scale, in order of preference: the camera's height above the floor, or a distance between two
   // frames the author knows. Neither: relative scale (first keyframe step = 1).

@@ -20,6 +20,7 @@ std::string KltOptions::check() const {
   if (min_distance_px < 1) o << "min_distance_px must be >= 1; ";
   if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
   if (pyramid_levels < 0 || pyramid_levels > 6) o << "pyramid_levels must be in [0, 6]; ";
+  if (max_track_frames < 0 || max_track_frames == 1) o << "max_track_frames must be 0 or >= 2; ";
   if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90)) o << "max_abs_elevation_deg must be in (10, 90]; ";
   return o.str();
 }
@@ -30,7 +31,8 @@ KltTracker::KltTracker(const KltOptions& options) : options_(options) {
 }
 
 Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
-  return equirect_to_bearing({o.x, o.y}, width_, height_);
+  // OpenCV puts pixel centres on integers; rig/spherical.h puts them at u + 0.5.
+  return equirect_to_bearing({o.x + 0.5, o.y + 0.5}, width_, height_);
 }
 
 cv::Mat KltTracker::prepare(const cv::Mat& frame) {
@@ -110,8 +112,17 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame) {
       x = std::fmod(x, static_cast<float>(width_));
       if (x < 0) x += width_;
       if (x >= width_) x -= width_;
-      tracks_[live_[k]].observations.push_back({frame_index, x, y});
-      still_live.push_back(live_[k]);
+      FeatureTrack& track = tracks_[live_[k]];
+      if (options_.max_track_frames > 0 && static_cast<int>(track.observations.size()) >= options_.max_track_frames) {
+        // Continue as a new point from here (see KltOptions::max_track_frames).
+        FeatureTrack next;
+        next.observations.push_back({frame_index, x, y});
+        tracks_.push_back(std::move(next));
+        still_live.push_back(static_cast<int>(tracks_.size()) - 1);
+      } else {
+        track.observations.push_back({frame_index, x, y});
+        still_live.push_back(live_[k]);
+      }
     }
     stats.tracked = static_cast<int>(still_live.size());
     if (!flow.empty()) {

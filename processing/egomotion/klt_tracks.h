@@ -21,6 +21,10 @@ struct KltOptions {
   int pyramid_levels = 3;
   double max_abs_elevation_deg = 72.0;  // corners nearer the poles are not used (stretched, few)
   double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
+  // A track longer than this many frames is cut and continued as a new track (a new 3-D point): frame-to-
+  // frame KLT drifts (the equirect distortion around a feature changes as the camera moves), and a short
+  // track keeps that drift below the refinement's noise. 0 = never cut.
+  int max_track_frames = 24;
   std::string check() const;      // empty when valid
 };
 

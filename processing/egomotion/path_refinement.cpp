@@ -134,6 +134,7 @@ std::string RefinementOptions::check() const {
     o << "window_overlap must be >= 2 and below window_keyframes; ";
   if (window_max_iterations < 0 || global_max_iterations < 0) o << "iteration limits must be >= 0; ";
   if (threads < 1) o << "threads must be >= 1; ";
+  if (outlier_threshold < 0) o << "outlier_threshold must be >= 0; ";
   return o.str();
 }
 
@@ -141,10 +142,6 @@ std::vector<double> observation_errors(const BundleProblem& p) {
   std::vector<double> e;
   e.reserve(p.observations.size());
   for (const BundleObservation& o : p.observations) {
-    const PlanarBearingCost cost(o.bearing);
-    double r[2];
-    cost(p.poses[o.pose].data(), p.points[o.point].data(), r);
-    // Residuals are sines of the angle's components; an opposite direction still counts as far off.
     const Eigen::Vector3d& q = p.points[o.point];
     const Eigen::Vector3d& c = p.poses[o.pose];
     const double ch = std::cos(c.z()), sh = std::sin(c.z());
@@ -152,7 +149,6 @@ std::vector<double> observation_errors(const BundleProblem& p) {
                             q.z());
     const double angle = std::atan2(d.cross(o.bearing).norm(), d.dot(o.bearing));
     e.push_back(std::isfinite(angle) ? angle : M_PI);
-    (void)r;
   }
   return e;
 }
@@ -187,9 +183,22 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     }
   }
   if (options.global_max_iterations > 0) {
-    if (!solve_range(problem, options, 0, n - 1, 1, options.global_max_iterations, progress, windowed_share, 1.0,
+    const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
+    if (!solve_range(problem, options, 0, n - 1, 1, options.global_max_iterations, progress, windowed_share, split,
                      &report)) {
       report.cancelled = true;
+    } else if (options.outlier_threshold > 0) {
+      const std::vector<double> errors = observation_errors(problem);
+      std::vector<BundleObservation> kept;
+      kept.reserve(problem.observations.size());
+      for (size_t k = 0; k < errors.size(); ++k)
+        if (errors[k] <= options.outlier_threshold) kept.push_back(problem.observations[k]);
+      report.outliers_removed = static_cast<int>(problem.observations.size() - kept.size());
+      problem.observations = std::move(kept);
+      if (!solve_range(problem, options, 0, n - 1, 1, std::max(1, options.global_max_iterations / 2), progress,
+                       split, 1.0, &report)) {
+        report.cancelled = true;
+      }
     }
   }
   report.final_rms = rms(observation_errors(problem));

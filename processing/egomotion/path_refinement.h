@@ -28,6 +28,9 @@ struct RefinementOptions {
   int window_overlap = 20;         // keyframes shared by consecutive windows (held in the later one)
   int window_max_iterations = 15;
   int global_max_iterations = 40;  // 0 = skip the global pass
+  // After the global pass, observations farther off than this (radians) are dropped and the global pass is
+  // repeated (0 = keep all).
+  double outlier_threshold = 0.012;
   int threads = 2;
   std::string check() const;       // empty when valid
 };
@@ -37,6 +40,7 @@ struct RefinementReport {
   double final_rms = 0.0;
   int windows = 0;
   int iterations = 0;        // summed over all solves
+  int outliers_removed = 0;  // observations dropped as outliers
   bool cancelled = false;
 };
 
