@@ -137,6 +137,9 @@ void prescan(const std::string& bytes, const std::string& name, PrescanResult* o
       // Counts drive dxflib's allocations (vertices, knots, control points).
       if (is_int_code(code) && code >= 70 && code <= 99 && std::abs(v) > 1e6)
         fail_line(line_no + 1, "group code " + std::to_string(code) + ": implausible count " + value.substr(0, 40));
+      // dxflib sizes a SPLINE's knot, control and fit point lists from these counts.
+      if ((code == 72 || code == 73 || code == 74) && std::abs(v) > 100000)
+        fail_line(line_no + 1, "group code " + std::to_string(code) + ": implausible count " + value.substr(0, 40));
     }
     if (code == 0) {
       if (value == "SECTION") {
@@ -248,8 +251,9 @@ void append_bulge(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double bul
 Eigen::Vector2d eval_spline(const std::vector<Eigen::Vector3d>& ctrl_w, const std::vector<double>& knots,
                             int degree, double t) {
   const int n = static_cast<int>(ctrl_w.size());
-  int k = degree;
-  while (k < n - 1 && t >= knots[k + 1]) ++k;
+  // The knot span holding t: knots[k] <= t < knots[k+1], degree <= k <= n-1.
+  const auto span = std::upper_bound(knots.begin() + degree + 1, knots.begin() + n, t);
+  const int k = static_cast<int>(span - knots.begin()) - 1;
   std::vector<Eigen::Vector3d> d(degree + 1);
   for (int j = 0; j <= degree; ++j) d[j] = ctrl_w[k - degree + j];
   for (int r = 1; r <= degree; ++r)
@@ -518,7 +522,7 @@ class Collector : public DL_CreationAdapter {
         // Adaptive: split a parameter interval until its chord is within the tolerance of the curve.
         const Eigen::Vector2d first = eval_spline(spline_ctrl_, knots, degree, t0);
         p.points.push_back(first);
-        const int initial = std::max(8, n * 4);
+        const int initial = std::clamp(n * 4, 8, 20000);
         double prev_t = t0;
         Eigen::Vector2d prev_p = first;
         for (int k = 1; k <= initial; ++k) {
