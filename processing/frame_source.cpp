@@ -12,6 +12,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "model/error.h"
+#include "processing/frame_source_internal.h"
 #include "processing/image_header.h"
 
 namespace fs = std::filesystem;
@@ -28,6 +29,9 @@ void FrameSourceOptions::check() const {
   if (stride < 1) throw Error("capture options: stride must be >= 1 (is " + std::to_string(stride) + ")");
   if (!(folder_frame_rate > 0.0) || !std::isfinite(folder_frame_rate))
     throw Error("capture options: folder_frame_rate must be a positive number of frames per second");
+  if (stitch_width < 8 || stitch_width % 2 != 0)
+    throw Error("capture options: stitch_width must be an even number of at least 8 pixels (is " +
+                std::to_string(stitch_width) + ")");
 }
 
 bool natural_less(const std::string& a, const std::string& b) {
@@ -89,6 +93,10 @@ long long trailing_number(const std::string& stem, std::string* pattern = nullpt
 
 std::string stem_of(const std::string& name) { return fs::path(name).stem().string(); }
 
+}  // namespace
+
+namespace frame_source_detail {
+
 // Any decoded image -> 8-bit BGR: grey and alpha handled, 16-bit scaled, float (EXR) clamped and gamma-encoded.
 cv::Mat to_bgr8(const cv::Mat& image) {
   cv::Mat m = image;
@@ -122,6 +130,14 @@ cv::Mat shrink_to_width(const cv::Mat& image, int max_width) {
   return out;
 }
 
+}  // namespace frame_source_detail
+
+namespace {
+
+using frame_source_detail::Backend;
+using frame_source_detail::shrink_to_width;
+using frame_source_detail::to_bgr8;
+
 void check_aspect(int width, int height, bool require_2to1, const std::string& where) {
   if (width <= 0 || height <= 0) throw file_error(where, "frames have no size");
   if (require_2to1 && std::abs(width - 2 * height) > 1) {
@@ -134,36 +150,6 @@ void check_aspect(int width, int height, bool require_2to1, const std::string& w
 }
 
 }  // namespace
-
-// ---------------------------------------------------------------------------------------------------------
-// Backends
-
-struct Backend {
-  virtual ~Backend() = default;
-  virtual cv::Mat read(int i) = 0;
-  virtual cv::Mat read_thumbnail(int i, int max_width) { return shrink_to_width(read(i), max_width); }
-};
-
-struct FrameSource::Impl {
-  CaptureKind kind = CaptureKind::kNone;
-  std::string source;
-  FrameSourceOptions options;
-  int width = 0, height = 0;
-  double frame_rate = 30.0;
-  std::vector<std::string> names;      // per kept frame
-  std::vector<long long> numbers;      // per kept frame: number in the name / video frame number (-1)
-  std::vector<double> timestamps;      // per kept frame
-  std::vector<SkippedFrame> skipped;
-  std::vector<std::string> depth_names;  // per kept frame, "" if none
-  int depth_matches = 0;
-  std::unique_ptr<Backend> backend;
-
-  void check_index(int i) const {
-    if (i < 0 || i >= static_cast<int>(names.size()))
-      throw file_error(source, "frame index " + std::to_string(i) + " is out of range (0.." +
-                                   std::to_string(static_cast<long long>(names.size()) - 1) + ")");
-  }
-};
 
 namespace {
 
@@ -332,7 +318,7 @@ std::vector<std::string> list_files(const fs::path& folder, bool (*accept)(const
   return names;
 }
 
-void match_depth(FrameSource::Impl& impl) {
+void match_depth_files(FrameSource::Impl& impl) {
   impl.depth_names.assign(impl.names.size(), "");
   impl.depth_matches = 0;
   if (impl.options.depth_folder.empty()) return;
@@ -581,6 +567,8 @@ bool looks_like_video(const std::string& path) {
 
 }  // namespace
 
+void frame_source_detail::match_depth(FrameSource::Impl& impl) { match_depth_files(impl); }
+
 // ---------------------------------------------------------------------------------------------------------
 
 FrameSource::FrameSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -593,6 +581,7 @@ std::unique_ptr<FrameSource> FrameSource::open(const std::string& folder_or_vide
   if (!fs::exists(path, ec)) throw file_error(folder_or_video, "does not exist");
   std::unique_ptr<Impl> impl;
   if (fs::is_directory(path, ec)) {
+    if (fs::exists(path / kRigFileName, ec)) return open_multi_head_folder(folder_or_video, options, nullptr);
     impl = open_folder(path, options, nullptr);
   } else {
     if (is_frame_extension(path.extension().string()))
@@ -601,7 +590,7 @@ std::unique_ptr<FrameSource> FrameSource::open(const std::string& folder_or_vide
       throw file_error(folder_or_video, "is neither a folder of frames nor a video file");
     impl = open_video(folder_or_video, options);
   }
-  match_depth(*impl);
+  frame_source_detail::match_depth(*impl);
   return std::unique_ptr<FrameSource>(new FrameSource(std::move(impl)));
 }
 
@@ -621,6 +610,12 @@ std::unique_ptr<FrameSource> FrameSource::open_capture(const Capture& capture) {
       options.folder_frame_rate = capture.frame_rate > 0 ? capture.frame_rate : 30.0;
       std::error_code ec;
       if (!fs::is_directory(capture.source, ec)) throw file_error(capture.source, "capture folder does not exist");
+      if (fs::exists(fs::path(capture.source) / kRigFileName, ec)) {
+        if (capture.width > 0) options.stitch_width = capture.width;
+        if (capture.frame_names.empty()) options.first_frame = 0;
+        return open_multi_head_folder(capture.source, options,
+                                      capture.frame_names.empty() ? nullptr : &capture.frame_names);
+      }
       std::unique_ptr<Impl> impl;
       if (capture.frame_names.empty()) {
         options.first_frame = 0;  // no list: take the folder as it is
@@ -628,7 +623,7 @@ std::unique_ptr<FrameSource> FrameSource::open_capture(const Capture& capture) {
       } else {
         impl = open_folder(capture.source, options, &capture.frame_names);
       }
-      match_depth(*impl);
+      frame_source_detail::match_depth(*impl);
       return std::unique_ptr<FrameSource>(new FrameSource(std::move(impl)));
     }
   }
@@ -672,6 +667,7 @@ int FrameSource::width() const { return impl_->width; }
 int FrameSource::height() const { return impl_->height; }
 double FrameSource::frame_rate() const { return impl_->frame_rate; }
 const FrameSourceOptions& FrameSource::options() const { return impl_->options; }
+int FrameSource::head_count() const { return impl_->head_count; }
 
 std::string FrameSource::frame_name(int i) const {
   impl_->check_index(i);

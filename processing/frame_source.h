@@ -28,6 +28,7 @@ struct FrameSourceOptions {
   std::string depth_folder;    // optional: depth maps matched to frames by name (see read_depth)
   bool verify_by_decoding = false;  // image folders: decode every frame while scanning (slow, thorough);
                                     // otherwise only headers, sizes and JPEG end markers are checked
+  int stitch_width = 2048;     // multi-head captures: width of the stitched panorama (height = width / 2)
   void check() const;          // throws Error saying which field is wrong
 };
 
@@ -45,6 +46,15 @@ class FrameSource {
   // does not exist, holds no usable frame, or the frames are not 2:1 (if options.require_2to1).
   static std::unique_ptr<FrameSource> open(const std::string& folder_or_video,
                                            const FrameSourceOptions& options = {});
+  // A multi-head capture: one image folder per head (in the rig file's head order) and the rig calibration
+  // (rig/multi_head_rig.h); frames are stitched to stitch_width x stitch_width/2 on the fly. A head's frames
+  // are matched to head 0's by the number in their names (else by file stem); frames some head lacks are
+  // skipped and listed. Range and stride apply to head 0's sorted frames. open() does this by itself for a
+  // folder holding kRigFileName and one sub-folder per head named after the head (or head0, head1, ...).
+  static std::unique_ptr<FrameSource> open_multi_head(const std::string& rig_file,
+                                                      const std::vector<std::string>& head_folders,
+                                                      const FrameSourceOptions& options = {});
+  static constexpr const char* kRigFileName = "rig.json";
   // Re-opens what a project's Capture describes (image folders use capture.frame_names as listed).
   static std::unique_ptr<FrameSource> open_capture(const Capture& capture);
   // Frames made on demand by `generate(i)` (must return width x height CV_8UC3 and be thread-safe):
@@ -65,6 +75,7 @@ class FrameSource {
   int height() const;
   double frame_rate() const;           // frames per second of the kept frames' source (before stride)
   const FrameSourceOptions& options() const;
+  int head_count() const;              // multi-head captures: number of heads; 0 otherwise
 
   std::string frame_name(int i) const;  // file name relative to the folder, or "frame N" for videos
   int frame_number(int i) const;        // video frame number, or the number in the file name (-1 if none)
@@ -88,6 +99,9 @@ class FrameSource {
 
  private:
   explicit FrameSource(std::unique_ptr<Impl> impl);
+  static std::unique_ptr<FrameSource> open_multi_head_folder(const std::string& capture_folder,
+                                                             const FrameSourceOptions& options,
+                                                             const std::vector<std::string>* given_names);
   std::unique_ptr<Impl> impl_;
 };
 
