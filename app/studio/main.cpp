@@ -1,4 +1,5 @@
-// `plenopath-studio [PROJECT.plenopath] [--screenshot FILE.png] [--frame N] [--autosave-seconds S]`: the editor.
+// `plenopath-studio [PROJECT.plenopath] [--screenshot FILE.png] [--frame N|middle] [--look DEG] [--size WxH]
+//  [--compute-visibility] [--resample] [--autosave-seconds S]`: the editor.
 // --screenshot opens the project, waits until the panorama shows its frame, saves an image of the whole
 // window and exits (app/take-screenshot.sh uses it for the README).
 #include <QApplication>
@@ -12,6 +13,9 @@
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
 #include "app/studio/main_window.h"
+#include "app/studio/studio_tasks.h"
+#include "widgets/sampling_panel.h"
+#include "widgets/task_runner.h"
 #include "widgets/map_view.h"
 #include "widgets/panorama_view.h"
 #include "widgets/project_document.h"
@@ -62,7 +66,10 @@ int main(int argc, char** argv) {
   const QCommandLineOption look(QString("look"), "Panorama look azimuth in degrees (with --screenshot).", "DEG");
   const QCommandLineOption size(QString("size"), "Window size WxH (with --screenshot).", "WxH");
   const QCommandLineOption autosave_seconds(QString("autosave-seconds"), "Autosave interval (default 180).", "S");
-  parser.addOptions({screenshot, frame, look, size, autosave_seconds});
+  const QCommandLineOption compute_visibility(QString("compute-visibility"),
+                                              "After opening, compute visibility if the project has none.");
+  const QCommandLineOption resample(QString("resample"), "After opening, sample keyframes if there are none.");
+  parser.addOptions({screenshot, frame, look, size, autosave_seconds, compute_visibility, resample});
   parser.process(app);
 
   plenopath::studio::MainWindow window;
@@ -81,7 +88,17 @@ int main(int argc, char** argv) {
   } else if (!parser.isSet(screenshot)) {
     QTimer::singleShot(0, &window, [&window] { window.offer_untitled_recovery(); });
   }
-  if (parser.isSet(frame)) window.document().set_current_position(parser.value(frame).toInt());
+  plenopath::widgets::ProjectDocument& document = window.document();
+  if (opened && parser.isSet(compute_visibility) && document.project().visibility.empty() &&
+      document.project().path.size() >= 2) {
+    window.tasks().start(QObject::tr("Compute visibility"), plenopath::studio::compute_visibility_task());
+    window.tasks().wait();
+  }
+  if (opened && parser.isSet(resample) && document.project().keyframes.empty()) window.sampling_panel()->resample(0);
+  if (parser.isSet(frame)) {
+    const QString f = parser.value(frame);
+    document.set_current_position(f == "middle" ? document.frame_count() / 2 : f.toInt());
+  }
   if (parser.isSet(look)) {
     auto* p = window.panorama_view();
     p->set_look(parser.value(look).toDouble() * M_PI / 180.0, p->elevation(), p->fov());

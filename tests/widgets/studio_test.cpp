@@ -2,6 +2,7 @@
 // panorama (and the panorama follows the equirect convention), sampling sliders and undo, cancelled tasks,
 // autosave recovery after kill -9, and the command line.
 #include <QAbstractSlider>
+#include <QAction>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
@@ -116,6 +117,24 @@ TEST(Studio, MapShowsPlanAndPath) {
   EXPECT_GT(count_near(image, map->widget_pixel_of({5.5, 3.5}), 3, is_path), 0);
   EXPECT_EQ(count_near(image, map->widget_pixel_of({6.0, 1.5}), 3, is_wall), 0);
   EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 1.5}), 3, is_background), 40);
+}
+
+TEST(Studio, MapShowsTheEnvelopeOfTheCurrentFrame) {
+  // From frame 0 at (1, 3.5) the half wall x = 4, y 0..2.5 hides (6, 1): the sight line crosses x = 4 at
+  // y = 3.5 - 2.5 * 3 / 5 = 2.0. (6, 4.5) is in plain view. The envelope is drawn as a translucent blue fill.
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  ASSERT_TRUE(wait_until([&] { return s.window.envelopes()->ready(); })) << "visibility index never built";
+  widgets::MapView* map = s.window.map_view();
+  QTest::qWait(20);
+  map->render_now();
+  const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  auto is_envelope = [](QRgb c) { return qBlue(c) > qRed(c) + 25 && qBlue(c) > 200; };
+  auto is_background = [](QRgb c) { return near_colour(c, 246, 245, 240, 6); };
+  EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 4.5}), 3, is_envelope), 40);
+  EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 1.0}), 3, is_background), 40);
+  EXPECT_EQ(count_near(image, map->widget_pixel_of({6.0, 1.0}), 3, is_envelope), 0);
 }
 
 TEST(Studio, ClickOnThePathGoesThere) {
@@ -310,6 +329,31 @@ TEST(Studio, TaskResultIsOneUndoStepAndErrorsArriveAsMessages) {
   EXPECT_EQ(doc.undo_stack()->count(), 1);
   doc.undo_stack()->undo();
   EXPECT_EQ(doc.project(), before);
+}
+
+TEST(Studio, ComputeVisibilityRunsAsATaskAndIsOneUndoStep) {
+  // Walking along y = 3.5 past the half wall's end (4, 2.5), the room corners behind it appear and vanish:
+  // the path must split into several cells, and the cells must cover the path in order.
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  QAction* action = nullptr;
+  for (QAction* a : s.window.findChildren<QAction*>())
+    if (a->text().contains("visibility", Qt::CaseInsensitive)) action = a;
+  ASSERT_NE(action, nullptr);
+  ASSERT_TRUE(action->isEnabled());
+  action->trigger();
+  EXPECT_TRUE(s.window.tasks().is_running());
+  s.window.tasks().wait();
+  ASSERT_TRUE(s.errors.isEmpty()) << s.errors.join("\n").toStdString();
+  const VisibilityCells& v = s.window.document().project().visibility;
+  ASSERT_GE(v.cells.size(), 2u);
+  EXPECT_EQ(v.cells.front().first_frame, 0);
+  EXPECT_EQ(v.cells.back().last_frame, 29);
+  for (std::size_t k = 1; k < v.cells.size(); ++k) EXPECT_LE(v.cells[k - 1].last_frame, v.cells[k].first_frame);
+  EXPECT_EQ(s.window.document().undo_stack()->count(), 1);
+  s.window.document().undo_stack()->undo();
+  EXPECT_TRUE(s.window.document().project().visibility.empty());
 }
 
 TEST(Studio, ChangesArriveAsOneNotificationPerBatch) {
