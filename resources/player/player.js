@@ -573,7 +573,7 @@
     });
     canvas.addEventListener('pointermove', (e) => {
       if (!drag) return;
-      lookBy(-(e.clientX - drag.x), e.clientY - drag.y);
+      lookBy(e.clientX - drag.x, e.clientY - drag.y);  // grab the picture: drag right to look left
       drag.x = e.clientX; drag.y = e.clientY;
     });
     canvas.addEventListener('pointerup', (e) => {
