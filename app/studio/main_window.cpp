@@ -213,6 +213,9 @@ void MainWindow::create_actions() {
   for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
 
   QMenu* process = menuBar()->addMenu(tr("&Process"));
+  QAction* track = process->addAction(tr("&Track camera path"));
+  track->setShortcut(tr("Ctrl+Shift+T"));
+  new TrackPathReaction(track, *this);
   QAction* visibility = process->addAction(tr("Compute &visibility"));
   visibility->setShortcut(tr("Ctrl+Shift+V"));
   new ComputeVisibilityReaction(visibility, *this);

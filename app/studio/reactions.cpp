@@ -82,6 +82,26 @@ void ComputeVisibilityReaction::on_triggered() {
   window_.tasks().start(QObject::tr("Compute visibility"), compute_visibility_task());
 }
 
+TrackPathReaction::TrackPathReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void TrackPathReaction::update_enabled() {
+  action()->setEnabled(!window_.tasks().is_running() && !window_.document().project().capture.empty());
+}
+
+void TrackPathReaction::on_triggered() {
+  if (!window_.document().project().path.empty() &&
+      QMessageBox::question(&window_, QObject::tr("Track camera path"),
+                            QObject::tr("Replace the current path with one tracked from the frames? "
+                                        "(Undo brings the old one back.)")) != QMessageBox::Yes)
+    return;
+  window_.tasks().start(QObject::tr("Track camera path"), track_path_task());
+}
+
 RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window) : QObject(menu), menu_(menu), window_(window) {
   connect(menu_, &QMenu::aboutToShow, this, &RecentFilesMenu::refill);
   refill();

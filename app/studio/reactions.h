@@ -73,6 +73,15 @@ class ComputeVisibilityReaction : public Reaction {
   void update_enabled();
 };
 
+class TrackPathReaction : public Reaction {
+ public:
+  TrackPathReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 // The File ▸ Open Recent menu, kept in QSettings ("recent_files").
 class RecentFilesMenu : public QObject {
   Q_OBJECT

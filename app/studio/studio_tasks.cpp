@@ -1,6 +1,7 @@
 #include "app/studio/studio_tasks.h"
 
 #include "model/error.h"
+#include "processing/egomotion/egomotion.h"
 #include "processing/frame_source.h"
 #include "processing/visibility.h"
 #include "widgets/project_document.h"
@@ -9,6 +10,7 @@ namespace plenopath::studio {
 
 using widgets::TaskProgress;
 using widgets::TaskResult;
+using widgets::TaskCancelled;
 
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices) {
   return [choices](Project project, TaskProgress& progress) {
@@ -20,6 +22,45 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
     if (choices.camera_height_m > 0) project.capture.camera_height_m = choices.camera_height_m;
     progress.report(1.0, std::to_string(source->frame_count()) + " frames");
     return TaskResult{std::move(project), widgets::kCaptureChanged};
+  };
+}
+
+widgets::TaskFunction track_path_task() {
+  return [](Project project, TaskProgress& progress) {
+    if (project.capture.empty()) throw Error("the project has no capture to track");
+    const std::shared_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
+    const int n = source->frame_count();
+    if (n < 2) throw Error("the capture has fewer than two frames");
+    EgomotionOptions options;
+    options.camera_height_m = project.capture.camera_height_m;
+    if (const std::string problem = options.check(); !problem.empty()) throw Error(problem);
+    // Reading is about half the work; the geometric stages share the rest.
+    EgomotionResult result = EgomotionTracker::run(
+        n,
+        [&](int i) {
+          progress.throw_if_cancelled();
+          progress.report(0.5 * i / n, "reading frame " + std::to_string(i + 1) + " of " + std::to_string(n));
+          return source->read(i);
+        },
+        options,
+        [&](const std::string& stage, double fraction) {
+          progress.report(stage == "frames" ? 0.5 * fraction : 0.5 + 0.5 * fraction, stage);
+          return !progress.cancelled();
+        });
+    progress.throw_if_cancelled();
+    if (result.cancelled) throw TaskCancelled{};
+    // The tracker numbers frames 0..n-1 in source order; the project uses capture indices.
+    for (PathFrame& f : result.path.frames) {
+      const int i = f.index;
+      if (project.capture.kind == CaptureKind::kVideo)
+        f.index = project.capture.first_frame + i * std::max(1, project.capture.stride);
+      if (project.capture.kind == CaptureKind::kImageFolder && i < static_cast<int>(project.capture.frame_names.size()))
+        f.file = project.capture.frame_names[i];
+    }
+    result.path.scale_source = result.scale_source;
+    project.path = std::move(result.path);
+    project.visibility = {};  // cells belong to the old path
+    return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
   };
 }
 

@@ -8,6 +8,9 @@ namespace plenopath::studio {
 
 // Scans the folder or video and sets the project's capture (keeps GPS data already there).
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices);
+// The camera path from the capture's frames alone (processing/egomotion): progress and cancel reach Ceres
+// through the tracker's callback. Scale from the capture's camera height when known.
+widgets::TaskFunction track_path_task();
 // Visibility events, cells and critical lines along the path (processing/visibility.h).
 widgets::TaskFunction compute_visibility_task();
 

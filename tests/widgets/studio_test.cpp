@@ -3,6 +3,11 @@
 // autosave recovery after kill -9, and the command line.
 #include <QAbstractSlider>
 #include <QAction>
+#include <QApplication>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QMimeData>
+#include <QUrl>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
@@ -220,6 +225,47 @@ TEST(Studio, PanoramaFollowsTheEquirectConvention) {
     }
   EXPECT_GE(matched, checks - 1) << "view centre matches the equirect sample";
   EXPECT_LE(mirrored_matched, 1);
+}
+
+TEST(Studio, WholeImageModeOutlinesTheHotspots) {
+  // The test project's hotspot in frame 0 spans azimuth -20..20 deg, elevation -10..20 deg. In whole-image
+  // mode the 2:1 image is letterboxed, so its left edge at elevation 5 deg sits at
+  // x = x0 + (180 - 20) / 360 * w, y = y0 + (90 - 5) / 180 * h.
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::PanoramaView* pano = s.window.panorama_view();
+  ASSERT_TRUE(wait_until([&] { return pano->shown_position() == 0; }));
+  pano->set_equirect_mode(true);
+  const QImage image = pano->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  const double aspect = image.width() / static_cast<double>(image.height());
+  const double w = aspect > 2.0 ? 2.0 * image.height() : image.width();
+  const double h = w / 2.0;
+  const double x0 = (image.width() - w) / 2.0, y0 = (image.height() - h) / 2.0;
+  auto at = [&](double az, double el) {
+    return QPoint(static_cast<int>(x0 + (az + 180.0) / 360.0 * w), static_cast<int>(y0 + (90.0 - el) / 180.0 * h));
+  };
+  auto is_outline = [](QRgb c) { return near_colour(c, 255, 200, 40, 30); };
+  EXPECT_GT(count_near(image, at(-20, 5), 2, is_outline), 2) << "left edge";
+  EXPECT_GT(count_near(image, at(20, 5), 2, is_outline), 2) << "right edge";
+  EXPECT_GT(count_near(image, at(0, 20), 2, is_outline), 2) << "top edge";
+  EXPECT_EQ(count_near(image, at(0, 5), 2, is_outline), 0) << "inside";
+  EXPECT_EQ(count_near(image, at(90, 5), 2, is_outline), 0) << "elsewhere";
+}
+
+TEST(Studio, DroppingAProjectFileOpensIt) {
+  const auto& t = test_project();
+  Studio s;
+  QMimeData mime;
+  mime.setUrls({QUrl::fromLocalFile(t.project_file)});
+  QDragEnterEvent enter(QPoint(100, 100), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&s.window, &enter);
+  EXPECT_TRUE(enter.isAccepted());
+  QDropEvent drop(QPointF(100, 100), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&s.window, &drop);
+  ASSERT_TRUE(wait_until([&] { return !s.window.document().file_name().isEmpty(); }, 5000));
+  EXPECT_EQ(s.window.document().file_name(), QFileInfo(t.project_file).absoluteFilePath());
+  EXPECT_EQ(s.window.document().project().path.size(), 30u);
 }
 
 TEST(Studio, SamplingSliderChangesKeyframesAndUndoRestores) {

@@ -73,6 +73,16 @@ TestProject make(const QString& name) {
   p.capture.width = render.width;
   p.capture.height = render.height;
   p.capture.frame_rate = 10.0;
+  // A hotspot in frame 0: azimuth -20..+20 deg, elevation -10..+20 deg.
+  Hotspot h;
+  h.id = "poster";
+  h.title = "Poster";
+  h.frame = 0;
+  h.kind = HotspotKind::kEvent;
+  h.action = "show_text";
+  for (const auto& [az, el] : std::vector<std::pair<double, double>>{{-20, -10}, {20, -10}, {20, 20}, {-20, 20}})
+    h.image_corners.push_back({az * M_PI / 180.0, el * M_PI / 180.0});
+  p.hotspots.push_back(h);
   t.project_file = dir.filePath("test.plenopath");
   save_project(p, t.project_file.toStdString());
   t.project = load_project(t.project_file.toStdString());  // paths as the studio will see them

@@ -1,0 +1,88 @@
+// Walk mode in the studio: it shows the keyframe images (not blank), a walk key moves to the next keyframe
+// and the picture changes, and a click on the map window walks there.
+#include <QElapsedTimer>
+#include <QTest>
+#include <QThread>
+#include <gtest/gtest.h>
+
+#include "model/error.h"
+#include "tests/widgets/test_project.h"
+#include "widgets/frame_provider.h"
+#include "widgets/project_document.h"
+#include "widgets/walk_view.h"
+
+namespace plenopath {
+namespace {
+
+template <typename Done>
+bool wait_for(Done done, int timeout_ms = 20000) {
+  QElapsedTimer timer;
+  timer.start();
+  while (!done()) {
+    if (timer.elapsed() > timeout_ms) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    QThread::msleep(2);
+  }
+  return true;
+}
+
+// Mean and spread of a grabbed view's grey levels, outside the map window and status line.
+std::pair<double, double> grey_statistics(const QImage& image) {
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = 40; y < image.height() / 2; y += 3)
+    for (int x = 0; x < image.width() / 2; x += 3) {
+      const double g = qGray(image.pixel(x, y));
+      sum += g;
+      sum2 += g * g;
+      ++n;
+    }
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean))};
+}
+
+TEST(WalkView, ShowsKeyframesAndWalks) {
+  Project project = test::test_project("walk").project;
+  project.keyframes.indices = {0, 10, 20, 29};
+  widgets::ProjectDocument document;
+  document.reset(project, test::test_project("walk").project_file);
+  widgets::FrameProvider frames(document);
+  widgets::WalkView view(document, frames);
+  view.resize(800, 500);
+  view.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&view));
+
+  QImage first;
+  ASSERT_TRUE(wait_for([&] {
+    first = view.grabFramebuffer();
+    return grey_statistics(first).second > 10.0;
+  })) << "the walk view stayed blank";
+  EXPECT_EQ(view.navigator().current_keyframe(), 0);
+
+  QTest::keyClick(&view, Qt::Key_W);
+  ASSERT_TRUE(wait_for([&] { return view.navigator().current_keyframe() == 1 && !view.navigator().moving(); }));
+  QImage walked;
+  ASSERT_TRUE(wait_for([&] {
+    walked = view.grabFramebuffer();
+    return view.navigator().fade() >= 1.0 && grey_statistics(walked).second > 10.0 && walked != first;
+  })) << "the picture did not change after walking";
+
+  // A click on the map window where the last keyframe is drawn walks there.
+  const QPointF last = view.map_point(project.path.frames.back().position());
+  QTest::mouseClick(&view, Qt::LeftButton, Qt::NoModifier, last.toPoint());
+  ASSERT_TRUE(wait_for([&] { return !view.navigator().moving(); }));
+  EXPECT_EQ(view.navigator().current_keyframe(), 3);
+  EXPECT_NEAR(view.navigator().s(), view.navigator().path_length(), 0.2);
+}
+
+TEST(WalkView, RefusesAProjectWithoutKeyframes) {
+  widgets::ProjectDocument document;
+  Project project = test::test_project("walk").project;
+  project.keyframes = {};
+  document.reset(project, QString());
+  widgets::FrameProvider frames(document);
+  EXPECT_THROW(widgets::WalkView(document, frames), Error);
+}
+
+}  // namespace
+}  // namespace plenopath
