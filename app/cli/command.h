@@ -22,6 +22,9 @@ Command add_capture_info_command(CLI::App& parent);
 Command add_eval_path_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
 Command add_plan_info_command(CLI::App& parent);
+Command add_render_command(CLI::App& parent);
+Command add_sample_command(CLI::App& parent);
+Command add_stitch_command(CLI::App& parent);
 Command add_track_command(CLI::App& parent);
 Command add_visibility_command(CLI::App& parent);
 

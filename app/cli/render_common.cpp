@@ -1,0 +1,78 @@
+#include "app/cli/render_common.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "model/error.h"
+#include "processing/dxf_import.h"
+#include "rig/synthetic_camera.h"
+
+namespace plenopath::cli {
+
+FloorPlan load_render_plan(const std::string& plan) {
+  if (plan == "office-sample") return make_office_sample_plan();
+  return import_dxf(plan);
+}
+
+void parse_size(const std::string& text, int* width, int* height, const std::string& option) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 8 || h < 4 ||
+      w > 32768 || h > 16384)
+    throw Error(option + ": expected WIDTHxHEIGHT such as 2048x1024, got '" + text + "'");
+  *width = w;
+  *height = h;
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality) {
+  std::vector<int> params;
+  const std::string lower = file.size() >= 4 ? file.substr(file.size() - 4) : file;
+  if (lower == ".jpg" || lower == "jpeg") params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
+  bool ok = false;
+  try {
+    ok = cv::imwrite(file, image, params);
+  } catch (const cv::Exception& e) {
+    throw file_error(file, std::string("cannot write image: ") + e.what());
+  }
+  if (!ok) throw file_error(file, "cannot write image");
+}
+
+void write_depth_png(const std::string& file, const cv::Mat& depth_m) {
+  cv::Mat mm;
+  depth_m.convertTo(mm, CV_16U, 1000.0);  // rounds and saturates at 65.535 m
+  write_image(file, mm);
+}
+
+Progress::Progress(std::string what, int total, bool quiet)
+    : what_(std::move(what)), total_(total), quiet_(quiet), tty_(isatty(2) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+void Progress::step(int done) {
+  if (quiet_) return;
+  const int decile = total_ > 0 ? done * 10 / total_ : 10;
+  if (!tty_ && decile == last_printed_) return;
+  last_printed_ = decile;
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  char line[200];
+  std::snprintf(line, sizeof line, "%s: %d/%d frames, %.1f frames/s", what_.c_str(), done, total_, s > 0 ? done / s : 0.0);
+  std::cerr << (tty_ ? "\r" : "") << line << (tty_ ? "" : "\n") << std::flush;
+}
+
+void Progress::finish() {
+  if (!quiet_ && tty_) std::cerr << "\n";
+}
+
+}  // namespace plenopath::cli

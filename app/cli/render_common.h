@@ -1,0 +1,37 @@
+#pragma once
+// Helpers shared by `plenopath render`, `stitch` and `sample`: plan loading, sizes, progress, image writing.
+#include <chrono>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "model/floor_plan.h"
+
+namespace plenopath::cli {
+
+// "office-sample" = the built-in sample plan; otherwise a DXF file (processing/dxf_import.h).
+FloorPlan load_render_plan(const std::string& plan);
+// "2048x1024" -> width, height; throws Error for anything else.
+void parse_size(const std::string& text, int* width, int* height, const std::string& option);
+// Comma-separated list, empty items dropped.
+std::vector<std::string> split_list(const std::string& text);
+// cv::imwrite that throws Error naming the file; JPEG quality applies to .jpg files.
+void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality = 92);
+// Depth in metres (CV_32F) to a 16-bit PNG in millimetres (0 = no hit).
+void write_depth_png(const std::string& file, const cv::Mat& depth_m);
+
+// "render: 12/300 frames, 8.1 frames/s" on stderr: rewritten in place on a terminal, else every 10 %.
+class Progress {
+ public:
+  Progress(std::string what, int total, bool quiet);
+  void step(int done);
+  void finish();
+ private:
+  std::string what_;
+  int total_;
+  bool quiet_, tty_;
+  int last_printed_ = -1;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace plenopath::cli
