@@ -1,19 +1,44 @@
 #!/usr/bin/env bash
-# `make run`: opens the studio on the bundled sample, or, with no display, runs the headless pipeline on it.
+# `make run`: renders the office sample's capture once (cached under resources/samples/office/capture/,
+# git-ignored), then opens the studio on the sample project when there is a display, or prints a headless
+# summary of the project and its capture when there is none.
 set -euo pipefail
 build_dir=${1:-build}
 cli="$build_dir/app/plenopath"
 studio="$build_dir/app/plenopath-studio"
-sample_project="resources/samples/office/office.plenopath"
+sample_dir="resources/samples/office"
+project="$sample_dir/office.plenopath"
+capture="$sample_dir/capture"
+stamp="$capture/.rendered-with"
+render_args=(render --plan "$sample_dir/office.dxf" --path "$sample_dir/office_path.json" --size 1024x512 --depth
+             --out "$capture")
 
 "$cli" --version
-if [[ -f "$sample_project" ]]; then
-  "$cli" info "$sample_project"
+if [[ ! -f "$project" || ! -f "$sample_dir/office.dxf" || ! -f "$sample_dir/office_path.json" ]]; then
+  echo "Writing the office sample (plan, path, project)…"
+  "$cli" sample --out "$sample_dir"
 fi
 
-if [[ -n "${DISPLAY:-}" ]] && command -v xdpyinfo >/dev/null && xdpyinfo >/dev/null 2>&1; then
-  echo "Opening the studio…"
-  exec "$studio" ${sample_project:+$( [[ -f "$sample_project" ]] && echo "$sample_project")}
+# The capture is up to date when it was rendered by this version with these arguments after the inputs
+# last changed.
+wanted="$("$cli" --version) ${render_args[*]}"
+if [[ -f "$stamp" && "$(cat "$stamp")" == "$wanted" && -f "$capture/groundtruth.json" &&
+      "$stamp" -nt "$sample_dir/office.dxf" && "$stamp" -nt "$sample_dir/office_path.json" ]]; then
+  echo "Sample capture up to date: $capture"
 else
-  echo "No display: the headless demo above ran instead. Start the studio on a desktop with: make run"
+  echo "Rendering the sample capture once (300 panoramas of 1024x512 with depth)…"
+  rm -rf "$capture"
+  "$cli" "${render_args[@]}"
+  echo "$wanted" > "$stamp"
 fi
+
+if [[ -n "${DISPLAY:-}" && -x "$studio" ]] && command -v xdpyinfo >/dev/null && xdpyinfo >/dev/null 2>&1; then
+  echo "Opening the studio on $project…"
+  exec "$studio" "$project"
+fi
+echo
+"$cli" info "$project"
+echo
+"$cli" capture-info "$capture/frames" --depth "$capture/depth" || true
+echo
+echo "No display: this was the headless summary. On a desktop, \`make run\` opens the studio on $project."
