@@ -25,6 +25,7 @@
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
 #include "app/studio/main_window.h"
+#include "app/studio/studio_tasks.h"
 #include "model/error.h"
 #include "model/project_io.h"
 #include "rig/equirect_sampling.h"
@@ -400,6 +401,27 @@ TEST(Studio, ComputeVisibilityRunsAsATaskAndIsOneUndoStep) {
   EXPECT_EQ(s.window.document().undo_stack()->count(), 1);
   s.window.document().undo_stack()->undo();
   EXPECT_TRUE(s.window.document().project().visibility.empty());
+}
+
+TEST(Studio, TrackingRunsOffTheGuiThreadAndCancelsWithinASecond) {
+  const auto& t = test_project();
+  widgets::ProjectDocument doc;
+  doc.load(t.project_file);
+  widgets::TaskRunner runner(doc);
+  const Project before = doc.project();
+  double last_fraction = 0.0;
+  QObject::connect(&runner, &widgets::TaskRunner::progress, [&](double f, const QString&) { last_fraction = f; });
+  QSignalSpy failed(&runner, &widgets::TaskRunner::failed);
+  ASSERT_TRUE(runner.start("Track camera path", studio::track_path_task()));
+  wait_until([&] { return last_fraction > 0.0 || !runner.is_running(); }, 10000);
+  QElapsedTimer clock;
+  clock.start();
+  runner.cancel();
+  ASSERT_TRUE(wait_until([&] { return !runner.is_running(); }, 10000));
+  EXPECT_LT(clock.elapsed(), 1000);
+  EXPECT_EQ(failed.count(), 0) << (failed.isEmpty() ? "" : failed.at(0).at(1).toString().toStdString());
+  EXPECT_EQ(doc.project(), before);
+  EXPECT_EQ(doc.undo_stack()->count(), 0);
 }
 
 TEST(Studio, ChangesArriveAsOneNotificationPerBatch) {
