@@ -1,6 +1,6 @@
 // `plenopath capture-info DIR|VIDEO [--first N] [--last N] [--stride S] [--depth DIR] [--gpx FILE] [--json]`:
 // what a capture holds before it is imported: frames, size, rate, skipped frames with reasons, depth and
-// GPS matches.
+// GPS matches. A folder holding rig.json and one folder per head is a multi-head capture.
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,6 +22,7 @@ struct Options {
   std::string depth;
   std::string gpx;
   double gps_offset_s = 0.0;
+  int stitch_width = 2048;
   bool any_aspect = false;
   bool verify = false;
   bool json = false;
@@ -36,6 +37,7 @@ nlohmann::json summarize(const Options& o) {
   options.depth_folder = o.depth;
   options.require_2to1 = !o.any_aspect;
   options.verify_by_decoding = o.verify;
+  options.stitch_width = o.stitch_width;
   const std::unique_ptr<FrameSource> source = FrameSource::open(o.source, options);
   const int n = source->frame_count();
 
@@ -52,6 +54,7 @@ nlohmann::json summarize(const Options& o) {
                             {"duration_s", n > 0 ? source->timestamp_s(n - 1) - source->timestamp_s(0) : 0.0},
                             {"first_name", source->frame_name(0)},
                             {"last_name", source->frame_name(n - 1)},
+                            {"heads", source->head_count()},
                             {"skipped", skipped}};
   if (!o.depth.empty())
     summary["depth"] = {{"folder", o.depth}, {"matched", source->depth_match_count()},
@@ -82,6 +85,7 @@ void print_text(const nlohmann::json& s) {
   std::cout << "Frames    " << s["frames"] << " of " << s["size"][0] << "x" << s["size"][1] << " at "
             << s["frame_rate"].get<double>() << " fps, " << s["duration_s"].get<double>() << " s ("
             << s["first_name"].get<std::string>() << " .. " << s["last_name"].get<std::string>() << ")\n";
+  if (s["heads"].get<int>() > 0) std::cout << "Heads     " << s["heads"] << " (stitched on the fly)\n";
   std::cout << "Skipped   " << s["skipped"].size() << "\n";
   for (const auto& k : s["skipped"])
     std::cout << "          " << k["name"].get<std::string>() << ": " << k["reason"].get<std::string>() << "\n";
@@ -108,6 +112,8 @@ Command add_capture_info_command(CLI::App& parent) {
   sub->add_option("--depth", o->depth, "Folder of depth maps matched to frames by name");
   sub->add_option("--gpx", o->gpx, "GPS track (GPX) matched to frames by time");
   sub->add_option("--gps-offset", o->gps_offset_s, "Seconds on the GPS clock at the capture's first frame time");
+  sub->add_option("--stitch-width", o->stitch_width, "Multi-head captures (a folder with rig.json): panorama width")
+      ->check(CLI::Range(8, 32768));
   sub->add_flag("--any-aspect", o->any_aspect, "Accept frames that are not 2:1");
   sub->add_flag("--verify", o->verify, "Decode every image while scanning (slow, finds all corrupt frames)");
   sub->add_flag("--json", o->json, "Machine-readable output");
