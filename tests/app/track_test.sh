@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# `plenopath track` and `plenopath eval-path`: exit codes, progress on stderr, JSON output, a mirrored path
+# scored as wrong, errors naming the file.
+set -u
+cli=$1; data=$2
+fail() { echo "FAIL: $*"; exit 1; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+# eval-path on hand-made paths: an L-shaped truth, the same path scaled/rotated/moved, and its mirror image.
+python3 - "$tmp" <<'PY'
+import json, math, sys
+d = sys.argv[1]
+truth, est, mirror = [], [], []
+for i in range(30):
+    x, y, h = (0.1 * i, 0.0, 0.0) if i < 15 else (1.4, 0.1 * (i - 14), math.pi / 2)
+    truth.append({"index": i, "x": x, "y": y, "heading_deg": math.degrees(h)})
+    a = 0.5
+    est.append({"index": i, "x": 2 * (math.cos(a) * x - math.sin(a) * y) + 3, "y": 2 * (math.sin(a) * x + math.cos(a) * y),
+                "heading_deg": math.degrees(h + a)})
+    mirror.append({"index": i, "x": x, "y": -y, "heading_deg": -math.degrees(h)})
+for name, frames in (("truth", truth), ("est", est), ("mirror", mirror)):
+    json.dump({"units": "m", "frames": frames}, open(f"{d}/{name}.json", "w"))
+PY
+"$cli" eval-path --estimate "$tmp/est.json" --truth "$tmp/truth.json" --json > "$tmp/e.json" || fail "eval-path exit $?"
+python3 - "$tmp/e.json" <<'PY' || fail "eval-path json: $(cat "$tmp/e.json")"
+import json, sys
+e = json.load(open(sys.argv[1]))
+assert e["frames_matched"] == 30, e
+assert e["ate_rms_m"] < 1e-9 and e["rot_rms_deg"] < 1e-9, e
+PY
+"$cli" eval-path --estimate "$tmp/mirror.json" --truth "$tmp/truth.json" --json > "$tmp/m.json" || fail "mirror exit $?"
+python3 - "$tmp/m.json" <<'PY' || fail "mirrored path scored well: $(cat "$tmp/m.json")"
+import json, sys
+e = json.load(open(sys.argv[1]))
+assert e["ate_pct"] > 5 and e["rot_rms_deg"] > 20, e
+PY
+"$cli" eval-path --estimate "$tmp/absent.json" --truth "$tmp/truth.json" 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "missing estimate: exit $code"
+grep -q "absent.json" "$tmp/err.txt" || fail "missing estimate message: $(cat "$tmp/err.txt")"
+
+# track on a tiny capture (three panoramas of the convention fixture, any names, natural order).
+mkdir -p "$tmp/cap"
+cp "$data/convention/pano_heading0.png" "$tmp/cap/f9.png"
+cp "$data/convention/pano_heading30.png" "$tmp/cap/f10.png"
+cp "$data/convention/pano_heading90.png" "$tmp/cap/f11.png"
+"$cli" track --capture "$tmp/cap" --camera-height 1.6 --out "$tmp/path.json" --json > "$tmp/t.json" 2> "$tmp/progress.txt" \
+  || fail "track exit $?: $(cat "$tmp/progress.txt")"
+grep -q "track: frames" "$tmp/progress.txt" || fail "no progress on stderr: $(cat "$tmp/progress.txt")"
+python3 - "$tmp/t.json" "$tmp/path.json" <<'PY' || fail "track output: $(cat "$tmp/t.json")"
+import json, sys
+s = json.load(open(sys.argv[1]))
+p = json.load(open(sys.argv[2]))
+assert s["frames"] == 3, s
+assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
+assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
+PY
+"$cli" track --capture "$tmp/nothing-here" 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "missing capture: exit $code"
+grep -q "nothing-here" "$tmp/err.txt" || fail "missing capture message: $(cat "$tmp/err.txt")"
+"$cli" track 2>/dev/null; code=$?
+[[ $code -eq 2 ]] || fail "track without --capture: exit $code"
+echo "ok"
