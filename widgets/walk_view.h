@@ -33,6 +33,8 @@ class WalkView : public QOpenGLWidget, protected QOpenGLFunctions {
   WalkNavigator& navigator() { return navigator_; }
   // Measured frames per second over the last second of animation (0 before any).
   double frames_per_second() const { return fps_; }
+  // Where a plan point is drawn in the map window (widget coordinates).
+  QPointF map_point(const Eigen::Vector2d& p) const;
 
  signals:
   void keyframe_changed(int frame);
@@ -52,7 +54,6 @@ class WalkView : public QOpenGLWidget, protected QOpenGLFunctions {
   unsigned texture_for(int keyframe);
   void draw_map(class QPainter& painter);
   QRectF map_rect() const;
-  QPointF map_point(const Eigen::Vector2d& p) const;
   Eigen::Vector2d plan_point(const QPointF& p) const;
   void release_gl();
 

@@ -66,6 +66,7 @@ TEST(WalkView, ShowsKeyframesAndWalks) {
     walked = view.grabFramebuffer();
     return view.navigator().fade() >= 1.0 && grey_statistics(walked).second > 10.0 && walked != first;
   })) << "the picture did not change after walking";
+  walked.save(QString(PLENOPATH_BINARY_DIR) + "/walk_view.png");  // to look at
 
   // A click on the map window where the last keyframe is drawn walks there.
   const QPointF last = view.map_point(project.path.frames.back().position());
