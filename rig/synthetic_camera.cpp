@@ -623,17 +623,30 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
   else
     out.depth.release();
   const double pixel_angle = 2.0 * kPi / w;
-  run(cv::Range(0, h), stripes * 8, [&](const cv::Range& r) {
-    for (int v = r.start; v < r.end; ++v) {
-      const double elevation = kPi / 2.0 - (v + 0.5) / h * kPi;
-      const RayRow row(std::tan(elevation), std::cos(elevation), std::sin(elevation));
-      cv::Vec3b* rgb = out.rgb.ptr<cv::Vec3b>(v);
-      float* depth = options.depth ? out.depth.ptr<float>(v) : nullptr;
-      for (int u = 0; u < w; ++u) {
-        const Hit hit = first_hit(ctx, columns[u], row);
-        const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d * row.sec_e;
-        rgb[u] = shade(ctx, columns[u], hit, row, distance, pixel_angle);
-        if (depth) depth[u] = static_cast<float>(distance);
+  // Per-row constants, then the pixels in tiles: neighbouring pixels of a tile sample neighbouring texels,
+  // which keeps the textures' working set in cache.
+  std::vector<RayRow> rows;
+  rows.reserve(h);
+  for (int v = 0; v < h; ++v) {
+    const double elevation = kPi / 2.0 - (v + 0.5) / h * kPi;
+    rows.emplace_back(std::tan(elevation), std::cos(elevation), std::sin(elevation));
+  }
+  constexpr int kTileW = 64, kTileH = 32;
+  const int tiles_x = (w + kTileW - 1) / kTileW, tiles_y = (h + kTileH - 1) / kTileH;
+  run(cv::Range(0, tiles_x * tiles_y), stripes * 8, [&](const cv::Range& r) {
+    for (int t = r.start; t < r.end; ++t) {
+      const int u0 = (t % tiles_x) * kTileW, v0 = (t / tiles_x) * kTileH;
+      const int u1 = std::min(w, u0 + kTileW), v1 = std::min(h, v0 + kTileH);
+      for (int v = v0; v < v1; ++v) {
+        const RayRow& row = rows[v];
+        cv::Vec3b* rgb = out.rgb.ptr<cv::Vec3b>(v);
+        float* depth = options.depth ? out.depth.ptr<float>(v) : nullptr;
+        for (int u = u0; u < u1; ++u) {
+          const Hit hit = first_hit(ctx, columns[u], row);
+          const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d * row.sec_e;
+          rgb[u] = shade(ctx, columns[u], hit, row, distance, pixel_angle);
+          if (depth) depth[u] = static_cast<float>(distance);
+        }
       }
     }
   });
