@@ -356,3 +356,30 @@ TEST(AutoWalk, StaysClearOfWallsAndVisitsTheRooms) {
 
 }  // namespace
 }  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// KLT needs corners everywhere: every 45-degree sector of the horizon band of a render, in a room, a
+// corridor and the lobby, holds Shi-Tomasi corners.
+TEST(SyntheticCamera, CornersEverywhere) {
+  const SyntheticScene scene = build_synthetic_scene(make_office_sample_plan());
+  RenderOptions options;
+  options.width = 512;
+  options.height = 256;
+  for (const PathFrame& pose : {PathFrame{0, "", 4.0, 7.5, 0.0, 1.0, kFrameOk, ""},
+                                PathFrame{1, "", 11.0, 10.5, 1.0, 1.0, kFrameOk, ""},
+                                PathFrame{2, "", 12.5, 3.0, 2.0, 1.0, kFrameOk, ""}}) {
+    cv::Mat grey;
+    cv::cvtColor(render_panorama(scene, pose, options).rgb, grey, cv::COLOR_BGR2GRAY);
+    for (int sector = 0; sector < 8; ++sector) {
+      const cv::Rect band(sector * 64, 64, 64, 128);  // elevations -45 .. +45 degrees
+      std::vector<cv::Point2f> corners;
+      cv::goodFeaturesToTrack(grey(band), corners, 200, 0.01, 4);
+      EXPECT_GE(corners.size(), 20u) << "pose " << pose.index << " sector " << sector;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace plenopath
