@@ -172,7 +172,91 @@ FrameContext make_context(const SyntheticScene& scene, const RenderOptions& o, c
   return c;
 }
 
-void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay& ray) {
+}  // namespace
+
+// Which faces each cell of a uniform grid over the floor rectangle touches.
+struct SceneGrid {
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  double cell = 1.0;
+  int nx = 0, ny = 0;
+  std::vector<int> start;  // faces of cell c: faces[start[c] .. start[c + 1])
+  std::vector<int> faces;
+};
+
+namespace {
+
+// Does segment ab touch the rectangle [lo, hi]? (Liang-Barsky clipping.)
+bool segment_touches_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& lo,
+                         const Eigen::Vector2d& hi) {
+  double t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector2d d = b - a;
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    double ta = (lo[k] - a[k]) / d[k], tb = (hi[k] - a[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+std::shared_ptr<const SceneGrid> build_grid(const SyntheticScene& scene) {
+  auto grid = std::make_shared<SceneGrid>();
+  const Eigen::Vector2d size = scene.floor_max - scene.floor_min;
+  const double area = std::max(size.x() * size.y(), 1e-6);
+  grid->cell = std::clamp(std::sqrt(area / static_cast<double>(scene.faces.size())), 0.2, 10.0);
+  grid->cell = std::max(grid->cell, std::sqrt(area / 4e6));  // at most ~4 million cells
+  grid->origin = scene.floor_min;
+  grid->nx = std::max(1, static_cast<int>(std::ceil(size.x() / grid->cell)));
+  grid->ny = std::max(1, static_cast<int>(std::ceil(size.y() / grid->cell)));
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(grid->nx) * grid->ny);
+  const double eps = 1e-9 * (1.0 + size.norm());
+  for (std::size_t i = 0; i < scene.faces.size(); ++i) {
+    const SceneFace& f = scene.faces[i];
+    const Eigen::Vector2d lo = f.a.cwiseMin(f.b), hi = f.a.cwiseMax(f.b);
+    const int x0 = std::clamp(static_cast<int>(std::floor((lo.x() - eps - grid->origin.x()) / grid->cell)), 0, grid->nx - 1);
+    const int x1 = std::clamp(static_cast<int>(std::floor((hi.x() + eps - grid->origin.x()) / grid->cell)), 0, grid->nx - 1);
+    const int y0 = std::clamp(static_cast<int>(std::floor((lo.y() - eps - grid->origin.y()) / grid->cell)), 0, grid->ny - 1);
+    const int y1 = std::clamp(static_cast<int>(std::floor((hi.y() + eps - grid->origin.y()) / grid->cell)), 0, grid->ny - 1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const Eigen::Vector2d clo = grid->origin + grid->cell * Eigen::Vector2d(x, y) - Eigen::Vector2d::Constant(eps);
+        const Eigen::Vector2d chi = clo + Eigen::Vector2d::Constant(grid->cell + 2 * eps);
+        if (segment_touches_box(f.a, f.b, clo, chi)) cells[static_cast<std::size_t>(y) * grid->nx + x].push_back(static_cast<int>(i));
+      }
+  }
+  grid->start.reserve(cells.size() + 1);
+  for (const auto& c : cells) {
+    grid->start.push_back(static_cast<int>(grid->faces.size()));
+    grid->faces.insert(grid->faces.end(), c.begin(), c.end());
+  }
+  grid->start.push_back(static_cast<int>(grid->faces.size()));
+  return grid;
+}
+
+// Faces already tested for the current ray (a face spans several cells).
+struct FaceStamps {
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t current = 0;
+  bool first_visit(int face) {
+    if (stamp[face] == current) return false;
+    stamp[face] = current;
+    return true;
+  }
+  void next_ray(std::size_t faces) {
+    if (stamp.size() != faces) stamp.assign(faces, 0);
+    if (++current == 0) {
+      std::fill(stamp.begin(), stamp.end(), 0);
+      current = 1;
+    }
+  }
+};
+
+void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay& ray, FaceStamps& stamps) {
   const SyntheticScene& scene = *ctx.scene;
   ray.origin = ctx.origin;
   ray.dir = dir;
@@ -184,20 +268,56 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     else if (dir[k] < 0) exit = std::min(exit, (scene.floor_min[k] - ctx.origin[k]) / dir[k]);
   }
   ray.d_exit = std::max(0.0, exit);
-  for (std::size_t i = 0; i < scene.faces.size(); ++i) {
+  double nearest_wall = std::numeric_limits<double>::infinity();
+  auto test_face = [&](int i) {
     const SceneFace& f = scene.faces[i];
     const Eigen::Vector2d e = f.b - f.a;
     const double denom = cross(dir, e);
-    if (denom == 0.0) continue;
+    if (denom == 0.0) return;
     const Eigen::Vector2d w = f.a - ctx.origin;
     const double t = cross(w, e) / denom;
-    if (!(t > 0.0)) continue;
+    if (!(t > 0.0)) return;
     const double s = cross(w, dir) / denom;
-    if (s < 0.0 || s > 1.0) continue;
+    if (s < 0.0 || s > 1.0) return;
     const double len = e.norm();
     const float incidence = static_cast<float>(std::abs(denom) / len);
     ray.crossings.push_back({t, s * len + f.u_offset, static_cast<float>(f.top), incidence,
-                             1.0f / std::sqrt(std::max(incidence, 0.02f)), static_cast<int>(i), f.footprint, f.kind});
+                             1.0f / std::sqrt(std::max(incidence, 0.02f)), i, f.footprint, f.kind});
+    if (is_full_height(f.kind)) nearest_wall = std::min(nearest_wall, t);
+  };
+  const SceneGrid* grid = scene.grid.get();
+  const bool inside_grid = grid && ctx.origin.x() >= grid->origin.x() && ctx.origin.y() >= grid->origin.y() &&
+                           ctx.origin.x() < grid->origin.x() + grid->nx * grid->cell &&
+                           ctx.origin.y() < grid->origin.y() + grid->ny * grid->cell;
+  if (!inside_grid) {
+    for (std::size_t i = 0; i < scene.faces.size(); ++i) test_face(static_cast<int>(i));
+  } else {
+    // Walk the cells along the ray (Amanatides & Woo) until a full-height face is met within a visited cell.
+    stamps.next_ray(scene.faces.size());
+    int ix = std::min(grid->nx - 1, static_cast<int>((ctx.origin.x() - grid->origin.x()) / grid->cell));
+    int iy = std::min(grid->ny - 1, static_cast<int>((ctx.origin.y() - grid->origin.y()) / grid->cell));
+    const int step_x = dir.x() > 0 ? 1 : (dir.x() < 0 ? -1 : 0);
+    const int step_y = dir.y() > 0 ? 1 : (dir.y() < 0 ? -1 : 0);
+    const double inf = std::numeric_limits<double>::infinity();
+    double t_max_x = step_x ? (grid->origin.x() + (ix + (step_x > 0)) * grid->cell - ctx.origin.x()) / dir.x() : inf;
+    double t_max_y = step_y ? (grid->origin.y() + (iy + (step_y > 0)) * grid->cell - ctx.origin.y()) / dir.y() : inf;
+    const double t_delta_x = step_x ? grid->cell / std::abs(dir.x()) : inf;
+    const double t_delta_y = step_y ? grid->cell / std::abs(dir.y()) : inf;
+    while (true) {
+      const int c = iy * grid->nx + ix;
+      for (int k = grid->start[c]; k < grid->start[c + 1]; ++k)
+        if (stamps.first_visit(grid->faces[k])) test_face(grid->faces[k]);
+      const double t_exit = std::min(t_max_x, t_max_y);
+      if (nearest_wall <= t_exit * (1 + 1e-12) + 1e-12) break;
+      if (t_max_x < t_max_y) {
+        ix += step_x;
+        t_max_x += t_delta_x;
+      } else {
+        iy += step_y;
+        t_max_y += t_delta_y;
+      }
+      if (ix < 0 || iy < 0 || ix >= grid->nx || iy >= grid->ny) break;
+    }
   }
   const int nfoot = static_cast<int>(ctx.scene->footprints.size());
   for (std::size_t p = 0; p < ctx.people.size(); ++p) {
@@ -219,7 +339,8 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     if (t1 > 0) ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
     ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
   }
-  std::sort(ray.crossings.begin(), ray.crossings.end(), [](const Crossing& a, const Crossing& b) { return a.d < b.d; });
+  std::sort(ray.crossings.begin(), ray.crossings.end(),
+            [](const Crossing& a, const Crossing& b) { return a.d < b.d || (a.d == b.d && a.face < b.face); });
   for (std::size_t i = 0; i < ray.crossings.size(); ++i)
     if (is_full_height(ray.crossings[i].kind)) {
       ray.crossings.resize(i + 1);
@@ -582,6 +703,7 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
                         static_cast<float>(0.8 + 0.4 * hash_unit(h + 2)));
     fp.texture_offset = Eigen::Vector2d(hash_unit(h + 3) * 16.0, hash_unit(h + 4) * 16.0);
   }
+  if (options.use_grid) scene.grid = build_grid(scene);
   scene.textures = make_scene_textures(options.texture_seed, options.texture_size, options.texels_per_metre);
   return scene;
 }
@@ -610,10 +732,11 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
       cv::parallel_for_(range, body, nstripes);
   };
   run(cv::Range(0, w), stripes * 4, [&](const cv::Range& r) {
+    FaceStamps stamps;
     for (int u = r.start; u < r.end; ++u) {
       const double azimuth = (u + 0.5) / w * 2.0 * kPi - kPi;
       const double angle = pose.heading - azimuth;  // world angle of the column
-      cast_column(ctx, Eigen::Vector2d(std::cos(angle), std::sin(angle)), columns[u]);
+      cast_column(ctx, Eigen::Vector2d(std::cos(angle), std::sin(angle)), columns[u], stamps);
     }
   });
 
@@ -687,7 +810,8 @@ RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, con
     result.bgr = shade(ctx, ray, hit, RayRow(0.0, 0.0, sin_e), dist, pixel_angle);
     return result;
   }
-  cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray);
+  FaceStamps stamps;
+  cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray, stamps);
   const double s = d.z() / horizontal;
   const RayRow row(s, cos_e, sin_e);
   const Hit hit = first_hit(ctx, ray, row);
@@ -708,6 +832,7 @@ RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vec
   out.depth.create(directions.size(), CV_32F);
   auto body = [&](const cv::Range& r) {
     ColumnRay ray;
+    FaceStamps stamps;
     for (int v = r.start; v < r.end; ++v)
       for (int u = 0; u < directions.cols; ++u) {
         const cv::Vec3d& dv = directions.at<cv::Vec3d>(v, u);
@@ -719,7 +844,8 @@ RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vec
           out.depth.at<float>(v, u) = static_cast<float>(hit.distance);
           continue;
         }
-        cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray);
+        FaceStamps stamps;
+  cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray, stamps);
         const RayRow row(d.z() / horizontal, horizontal, d.z());
         const Hit hit = first_hit(ctx, ray, row);
         const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;

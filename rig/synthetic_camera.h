@@ -42,6 +42,7 @@ struct SceneOptions {
   std::uint32_t texture_seed = 1;  // every surface's texture is a deterministic function of this and its id
   int texture_size = 1024;     // texels per side of each procedural texture (power of two)
   double texels_per_metre = 256.0;
+  bool use_grid = true;        // cast rays through a uniform grid over the faces (off = test every face)
 
   // Empty when the options make sense; otherwise says what is wrong.
   std::string check() const;

@@ -383,3 +383,43 @@ TEST(SyntheticCamera, CornersEverywhere) {
 
 }  // namespace
 }  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// The uniform grid only skips work: images are identical to testing every face, also with people, and
+// for a plan with thousands of short segments.
+TEST(SyntheticCamera, GridCastingEqualsTestingEveryFace) {
+  FloorPlan plan = make_office_sample_plan();
+  // Chop the walls into 2 cm pieces so cells hold many faces.
+  FloorPlan chopped = plan;
+  chopped.segments.clear();
+  for (const auto& s : plan.segments) {
+    const int n = s.occluder ? std::max(1, static_cast<int>(s.length() / 0.02)) : 1;
+    for (int i = 0; i < n; ++i) {
+      PlanSegment piece = s;
+      piece.a = s.a + (s.b - s.a) * (double(i) / n);
+      piece.b = s.a + (s.b - s.a) * (double(i + 1) / n);
+      chopped.segments.push_back(piece);
+    }
+  }
+  RenderOptions options;
+  options.width = 256;
+  options.height = 128;
+  options.people = 5;
+  for (const FloorPlan* p : {&plan, &chopped}) {
+    SceneOptions brute;
+    brute.use_grid = false;
+    const SyntheticScene with_grid = build_synthetic_scene(*p), without = build_synthetic_scene(*p, brute);
+    ASSERT_TRUE(with_grid.grid);
+    for (const PathFrame& pose : {PathFrame{3, "", 4.0, 7.5, 0.2, 1.0, kFrameOk, ""},
+                                  PathFrame{9, "", 12.4, 2.9, -1.0, 1.0, kFrameOk, ""}}) {
+      const RenderedPanorama a = render_panorama(with_grid, pose, options), b = render_panorama(without, pose, options);
+      EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
+      EXPECT_EQ(cv::norm(a.rgb, b.rgb, cv::NORM_INF), 0.0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace plenopath
