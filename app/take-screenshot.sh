@@ -14,8 +14,12 @@ if [[ ! -x "$studio" ]]; then
   echo "take-screenshot: $studio not found; build first (make build)" >&2
   exit 1
 fi
+if [[ -z "${3:-}" ]]; then
+  # The bundled sample: write it and render its capture if needed (cached), without opening the studio.
+  DISPLAY= bash app/run-sample.sh "$build_dir" > /dev/null
+fi
 if [[ ! -f "$project" ]]; then
-  echo "take-screenshot: $project not found; make the sample first (make run)" >&2
+  echo "take-screenshot: $project not found" >&2
   exit 1
 fi
 mkdir -p "$(dirname "$output")"

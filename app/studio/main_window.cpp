@@ -79,8 +79,9 @@ MainWindow::MainWindow(QWidget* parent)
   auto* splitter = new QSplitter(Qt::Horizontal, this);
   splitter->addWidget(map_);
   splitter->addWidget(panorama_);
-  splitter->setStretchFactor(0, 1);
-  splitter->setStretchFactor(1, 1);
+  splitter->setStretchFactor(0, 11);
+  splitter->setStretchFactor(1, 9);
+  splitter->setSizes({550, 450});
   setCentralWidget(splitter);
   envelopes_ = new EnvelopeService(*document_, *map_, this);
 
