@@ -19,6 +19,7 @@ struct Command {
 
 // One line per subcommand; keep alphabetical. Each lives in command_<name>.cpp.
 Command add_capture_info_command(CLI::App& parent);
+Command add_encode_video_command(CLI::App& parent);
 Command add_eval_path_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
 Command add_plan_info_command(CLI::App& parent);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
 
   std::vector<Command> commands = {
       add_capture_info_command(app),
+      add_encode_video_command(app),
       add_eval_path_command(app),
       add_info_command(app),
       add_plan_info_command(app),
