@@ -1,5 +1,6 @@
 #include "rig/scene_textures.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -59,10 +60,13 @@ void draw_wrapped(int n, Draw draw) {
     for (int ox = -n; ox <= n; ox += n) draw(cv::Point(ox, oy));
 }
 
+// Mostly a change of brightness (what corner detectors see), with a little change of hue.
 cv::Scalar jitter(cv::RNG& rng, cv::Vec3b base, int amount) {
-  return cv::Scalar(cv::saturate_cast<uchar>(base[0] + rng.uniform(-amount, amount + 1)),
-                    cv::saturate_cast<uchar>(base[1] + rng.uniform(-amount, amount + 1)),
-                    cv::saturate_cast<uchar>(base[2] + rng.uniform(-amount, amount + 1)));
+  const int light = rng.uniform(-amount, amount + 1);
+  const int hue = std::max(1, amount / 4);
+  return cv::Scalar(cv::saturate_cast<uchar>(base[0] + light + rng.uniform(-hue, hue + 1)),
+                    cv::saturate_cast<uchar>(base[1] + light + rng.uniform(-hue, hue + 1)),
+                    cv::saturate_cast<uchar>(base[2] + light + rng.uniform(-hue, hue + 1)));
 }
 
 // Rectangles (corners) and discs (blobs) from large to small.
