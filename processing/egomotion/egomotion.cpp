@@ -111,6 +111,7 @@ struct EgomotionTracker::State {
   std::vector<std::vector<double>> rings;
   std::vector<FrameTrackStats> stats;
   std::vector<int> live_after;  // live tracks after each frame (texture measure)
+  std::vector<double> window;   // ring column weights
   double seconds_frames = 0.0;
 };
 
@@ -141,7 +142,17 @@ void EgomotionTracker::add_frame(const cv::Mat& bgr) {
     gray = small;
   }
   s.rings.push_back(make_ring_image(gray, s.options.ring));
-  const FrameTrackStats st = s.klt.add_frame(gray);
+  // The turn since the previous frame, from the rings, starts the KLT search (fast turns).
+  double predicted_shift = 0.0;
+  if (s.rings.size() >= 2) {
+    const std::vector<double>& previous = s.rings[s.rings.size() - 2];
+    const double max_px = s.options.ring.max_turn_deg_per_frame / 360.0 * gray.cols;
+    if (s.window.size() != previous.size()) s.window = axis_window(gray.cols, s.options.ring.axis_floor);
+    const RingShift shift = circular_phase_correlation(previous, s.rings.back(), 0.0, max_px, &s.window,
+                                                       s.options.ring.max_frequency_fraction);
+    if (shift.valid && shift.peak >= s.options.ring.min_peak) predicted_shift = shift.shift_px;
+  }
+  const FrameTrackStats st = s.klt.add_frame(gray, predicted_shift);
   s.stats.push_back(st);
   s.live_after.push_back(st.tracked + st.detected);
   s.seconds_frames += seconds_since(t0);

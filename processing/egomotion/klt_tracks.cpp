@@ -63,7 +63,7 @@ cv::Mat KltTracker::prepare(const cv::Mat& frame) {
   return gray;
 }
 
-FrameTrackStats KltTracker::add_frame(const cv::Mat& frame) {
+FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shift_px) {
   const cv::Mat gray = prepare(frame);
   const int frame_index = frame_count_++;
   // Wrap horizontally (the seam), replicate vertically (the poles are not tracked anyway).
@@ -87,8 +87,10 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame) {
     std::vector<unsigned char> status, status_back;
     std::vector<float> error;
     const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    to = from;
+    for (cv::Point2f& p : to) p.x += static_cast<float>(predicted_shift_px);
     cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, error, window, options_.pyramid_levels,
-                             term);
+                             term, cv::OPTFLOW_USE_INITIAL_FLOW);
     bool check_back = options_.forward_backward_px > 0;
     if (check_back) {
       back = from;

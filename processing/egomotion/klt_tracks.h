@@ -48,8 +48,10 @@ struct FrameTrackStats {
 class KltTracker {
  public:
   explicit KltTracker(const KltOptions& options);
-  // Tracks into the next frame (BGR or gray, any size; equirectangular 2:1).
-  FrameTrackStats add_frame(const cv::Mat& frame);
+  // Tracks into the next frame (BGR or gray, any size; equirectangular 2:1). predicted_shift_px: expected
+  // horizontal motion of every feature in working pixels (a turn, e.g. from the ring images), used as
+  // the search's starting point so fast turns stay within the pyramid's reach.
+  FrameTrackStats add_frame(const cv::Mat& frame, double predicted_shift_px = 0.0);
 
   const std::vector<FeatureTrack>& tracks() const { return tracks_; }
   int frame_count() const { return frame_count_; }

@@ -64,24 +64,34 @@ PlanarRelativePose estimate_planar_relative_pose(const std::vector<Eigen::Vector
 
   std::uniform_int_distribution<int> pick(0, n - 1);
   int best = -1;
-  double best_direction = 0.0;
-  for (int it = 0; it < options.iterations; ++it) {
-    const int k = pick(rng);
-    if (parallax[k] < options.min_parallax) continue;
-    // t . (a x R b) = 0 with t = (cos, sin, 0).
-    const Eigen::Vector3d m = a[k].cross(rotate_z(b[k], turn_guess));
-    if (std::hypot(m.x(), m.y()) < 1e-12) continue;
-    const double direction = std::atan2(-m.x(), m.y());  // t perpendicular to (m.x, m.y)
-    const int c = count_inliers(turn_guess, direction, nullptr);
-    if (c > best) {
-      best = c;
-      best_direction = direction;
+  double best_direction = 0.0, best_turn = turn_guess;
+  auto hypotheses = [&](double turn, int iterations) {
+    for (int it = 0; it < iterations; ++it) {
+      const int k = pick(rng);
+      if (parallax[k] < options.min_parallax) continue;
+      // t . (a x R b) = 0 with t = (cos, sin, 0).
+      const Eigen::Vector3d m = a[k].cross(rotate_z(b[k], turn));
+      if (std::hypot(m.x(), m.y()) < 1e-12) continue;
+      const double direction = std::atan2(-m.x(), m.y());  // t perpendicular to (m.x, m.y)
+      const int c = count_inliers(turn, direction, nullptr);
+      if (c > best) {
+        best = c;
+        best_direction = direction;
+        best_turn = turn;
+      }
     }
+  };
+  hypotheses(turn_guess, options.iterations);
+  if (best < n / 2) {
+    // The turn guess may be far off (a fast turn the rings misread): scan turns around it.
+    const double step = M_PI / 180.0;
+    for (int j = -options.turn_scan_deg; j <= options.turn_scan_deg; ++j)
+      if (j != 0) hypotheses(turn_guess + j * step, 12);
   }
   if (best < options.min_inliers) return out;
 
   // Gauss-Newton on (turn, direction) over the inliers (numerical derivatives; two unknowns).
-  double turn = turn_guess, direction = best_direction;
+  double turn = best_turn, direction = best_direction;
   std::vector<bool> mask(n);
   for (int round = 0; round < 3; ++round) {
     count_inliers(turn, direction, &mask);

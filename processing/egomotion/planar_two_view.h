@@ -24,6 +24,7 @@ struct PlanarTwoViewOptions {
   int iterations = 64;        // RANSAC hypotheses
   int min_inliers = 12;
   double min_parallax = 0.002;  // radians; below this the direction is not observable
+  int turn_scan_deg = 25;       // when the turn guess explains under half the matches, turns within this are tried
 };
 
 // a[k] seen by camera A, b[k] by camera B (camera frames, unit). A sits at the origin with heading 0.

@@ -19,7 +19,7 @@ struct RingOptions {
   // Spectral taper: frequencies above this fraction of Nyquist are faded out (whitened high frequencies
   // are mostly noise and aliasing).
   double max_frequency_fraction = 0.5;
-  double max_turn_deg_per_frame = 12.0;  // bounds the peak search (a trolley does not spin faster)
+  double max_turn_deg_per_frame = 18.0;  // bounds the peak search (a trolley does not spin faster)
   std::vector<int> frame_offsets = {1, 2, 4, 8};  // each frame is registered against these earlier frames
   double min_peak = 0.05;  // weaker correlation peaks are treated as failures
 

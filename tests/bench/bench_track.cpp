@@ -115,6 +115,7 @@ nlohmann::json run(const RunSpec& spec) {
           {"scale_source", r.scale_source},
           {"floor_points", r.floor_points},
           {"scale_error_pct", e.scale_error_pct},
+          {"scale_error_signed_pct", 100.0 * (1.0 / e.scale - 1.0)},  // > 0: the estimate is too large
           {"refinement_rms_deg", {degrees(r.refinement.initial_rms), degrees(r.refinement.final_rms)}},
           {"refinement_iterations", r.refinement.iterations},
           {"flagged_frames", r.flagged_frames},
