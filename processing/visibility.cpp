@@ -1,6 +1,12 @@
 // The plain-double half of processing/visibility.h: options, radial functions, events and cells. The CGAL
 // half (arrangement, envelopes, per-vertex windows) is visibility_cgal.cpp.
 #include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <thread>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 
 #include "model/error.h"
@@ -87,7 +93,15 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     path_segments.push_back({points[i], points[i + 1]});
     path_frame.push_back(static_cast<int>(i));
   }
+  const auto timing_start = std::chrono::steady_clock::now();
   const std::vector<CriticalLine> windows = vertex_windows();
+  const bool timing = std::getenv("PLENOPATH_VISIBILITY_TIMING") != nullptr;
+  auto lap = [&](const char* what) {
+    if (timing)
+      std::fprintf(stderr, "visibility timing: %s %.3f s\n", what,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - timing_start).count());
+  };
+  lap("windows");
   if (!path_segments.empty()) {
     const SegmentGrid grid(path_segments);
     std::vector<VisibilityEvent> raw;
@@ -109,6 +123,7 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     }
   }
 
+  lap("crossings");
   // Critical lines for display: all of them, or an even subsample when there are too many.
   const std::size_t cap = options().max_critical_lines;
   if (windows.size() <= cap) {
@@ -127,20 +142,46 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     const Envelope e = envelope(point_at(points, s_at, s));
     return e.status == EnvelopeStatus::ok ? e.area : -1.0;
   };
-  std::vector<double> bound_area;
-  if (options().area_mean_simpson)
-    for (double b : bounds) bound_area.push_back(area_at(b));
+  // Envelope areas: at each cell's middle (and at the events for Simpson's rule), on several threads.
+  std::vector<double> queries_s;
+  for (std::size_t c = 0; c + 1 < bounds.size(); ++c) queries_s.push_back(0.5 * (bounds[c] + bounds[c + 1]));
+  if (options().area_mean_simpson) queries_s.insert(queries_s.end(), bounds.begin(), bounds.end());
+  std::vector<double> query_area(queries_s.size(), -1.0);
+  {
+    int threads = options().threads > 0 ? options().threads
+                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    threads = std::max(1, std::min<int>(threads, static_cast<int>(queries_s.size() / 16) + 1));
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    auto work = [&]() {
+      try {
+        for (std::size_t i = next++; i < queries_s.size(); i = next++) query_area[i] = area_at(queries_s[i]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = queries_s.size();
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
+    if (failure) std::rethrow_exception(failure);
+  }
+  const std::size_t cell_count = bounds.size() - 1;
   for (std::size_t c = 0; c + 1 < bounds.size(); ++c) {
     VisibilityCell cell;
     cell.s_begin = bounds[c];
     cell.s_end = bounds[c + 1];
     cell.length = cell.s_end - cell.s_begin;
-    const double mid_area = area_at(0.5 * (cell.s_begin + cell.s_end));
+    const double mid_area = query_area[c];
     cell.area_mid = std::max(0.0, mid_area);
     cell.area_mean = cell.area_mid;
     if (options().area_mean_simpson && mid_area >= 0.0) {
-      const double a0 = bound_area[c] >= 0.0 ? bound_area[c] : mid_area;
-      const double a1 = bound_area[c + 1] >= 0.0 ? bound_area[c + 1] : mid_area;
+      const double b0 = query_area[cell_count + c], b1 = query_area[cell_count + c + 1];
+      const double a0 = b0 >= 0.0 ? b0 : mid_area;
+      const double a1 = b1 >= 0.0 ? b1 : mid_area;
       cell.area_mean = (a0 + 4.0 * mid_area + a1) / 6.0;
     }
     // Frames inside [s_begin, s_end) (the last cell includes its end).
@@ -159,6 +200,8 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     }
     result.cells.push_back(cell);
   }
+  lap("cells");
+  if (timing) std::fprintf(stderr, "visibility timing: %zu windows\n", windows.size());
   return result;
 }
 
