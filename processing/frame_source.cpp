@@ -255,6 +255,7 @@ struct GeneratorBackend : Backend {
 // are reported as missing frames and time stamps follow the numbers.
 struct Numbering {
   bool consistent = false;  // every file has a number, one name pattern, unique numbers
+  bool counter = false;     // ... and the numbers count frames: few gaps (not clock times or dates)
   long long first = 0;      // number of the first file in sort order
   long long step = 1;       // most common difference between consecutive numbers
   int digits = 0;           // zero-padded width, if all names share it
@@ -291,6 +292,11 @@ Numbering analyse_numbering(const std::vector<std::string>& sorted_names) {
   int best = 0;
   for (const auto& [step, count] : steps)
     if (count > best) best = count, n.step = step;
+  // Names like VID_120059, VID_120100 (clock times) leave big "gaps": such numbers are not frame counters,
+  // so neither gaps nor time stamps are taken from them.
+  const long long span = (numbers.back() - numbers.front()) / n.step + 1;
+  const long long missing = span - static_cast<long long>(numbers.size());
+  n.counter = 4 * missing <= static_cast<long long>(numbers.size());
   return n;
 }
 
@@ -365,7 +371,7 @@ FolderScan scan_folder_names(const fs::path& folder) {
 }
 
 double folder_timestamp(const Numbering& numbering, long long number, int position, double rate) {
-  if (numbering.consistent && number >= 0) return double(number - numbering.first) / double(numbering.step) / rate;
+  if (numbering.counter && number >= 0) return double(number - numbering.first) / double(numbering.step) / rate;
   return position / rate;
 }
 
@@ -404,7 +410,7 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
 
     // Gaps in the numbering between kept files: missing frames (listed, never fatal).
     const Numbering& nb = scan.numbering;
-    if (nb.consistent && options.stride == 1 && candidates.size() > 1) {
+    if (nb.counter && options.stride == 1 && candidates.size() > 1) {
       for (std::size_t k = 1; k < candidates.size(); ++k) {
         const long long a = trailing_number(stem_of(candidates[k - 1].second));
         const long long b = trailing_number(stem_of(candidates[k].second));
