@@ -4,6 +4,7 @@
 #include <QLabel>
 #include <QMouseEvent>
 #include <QPainter>
+#include <QPainterPath>
 #include <QSignalBlocker>
 #include <QSpinBox>
 #include <QStyle>
@@ -40,6 +41,12 @@ double TimelineStrip::x_of(int position) const {
   return n <= 1 ? r.left() : r.left() + r.width() * position / (n - 1.0);
 }
 
+void TimelineStrip::set_profiles(QVector<double> envelope_area, QVector<double> depth_volume) {
+  envelope_area_ = std::move(envelope_area);
+  depth_volume_ = std::move(depth_volume);
+  update();
+}
+
 void TimelineStrip::paintEvent(QPaintEvent*) {
   QPainter painter(this);
   painter.setRenderHint(QPainter::Antialiasing);
@@ -74,10 +81,35 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
       painter.drawLine(QPointF(x0, y), QPointF(x1, y));
     }
   }
-  if (max_area > 0) {
+  // Per-frame curves, each scaled to its maximum.
+  QVector<QPair<QString, QColor>> legend;
+  auto plot = [&](const QVector<double>& series, const QColor& colour, const QString& name, const QString& unit) {
+    if (series.size() != n) return;
+    const double top = *std::max_element(series.begin(), series.end());
+    if (!(top > 0)) return;
+    QPainterPath curve;
+    for (int i = 0; i < n; ++i) {
+      const QPointF q(x_of(i), r.bottom() - 8 - (r.height() - 14) * series[i] / top);
+      if (i == 0) curve.moveTo(q); else curve.lineTo(q);
+    }
+    painter.setPen(QPen(colour, 1.6));
+    painter.setBrush(Qt::NoBrush);
+    painter.drawPath(curve);
+    legend.append({QString("%1 (max %2 %3)").arg(name).arg(top, 0, 'f', 0).arg(unit), colour});
+  };
+  plot(envelope_area_, QColor(40, 110, 200), tr("envelope area"), tr("m²"));
+  plot(depth_volume_, QColor(30, 150, 80), tr("depth volume"), tr("m³"));
+  if (!legend.isEmpty()) {
+    double x = r.left() + 4;
+    for (const auto& [text, colour] : legend) {
+      painter.setPen(colour);
+      painter.drawText(QPointF(x, r.top() + painter.fontMetrics().ascent() + 2), "― " + text);
+      x += painter.fontMetrics().horizontalAdvance("― " + text) + 18;
+    }
+  } else if (max_area > 0) {
     painter.setPen(palette().color(QPalette::Text));
     painter.drawText(r.adjusted(4, 2, 0, 0), Qt::AlignLeft | Qt::AlignTop,
-                     tr("envelope area (max %1 m²)").arg(max_area, 0, 'f', 0));
+                     tr("cell envelope area (max %1 m²)").arg(max_area, 0, 'f', 0));
   } else if (p.visibility.cells.empty()) {
     painter.setPen(palette().color(QPalette::PlaceholderText));
     painter.drawText(r.adjusted(4, 2, 0, 0), Qt::AlignLeft | Qt::AlignTop,

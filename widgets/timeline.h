@@ -22,6 +22,9 @@ class TimelineStrip : public QWidget {
   // Position under widget x, and x of a position.
   int position_at(double x) const;
   double x_of(int position) const;
+  // Per-position series plotted along the path (empty = not shown): envelope area (m^2) and depth volume
+  // (m^3), each scaled to its own maximum. Computed elsewhere (processing/), shown here.
+  void set_profiles(QVector<double> envelope_area, QVector<double> depth_volume);
 
  protected:
   void paintEvent(QPaintEvent* event) override;
@@ -31,6 +34,8 @@ class TimelineStrip : public QWidget {
  private:
   QRectF plot_rect() const;
   ProjectDocument& document_;
+  QVector<double> envelope_area_;
+  QVector<double> depth_volume_;
 };
 
 class TimelinePanel : public QWidget {

@@ -21,6 +21,8 @@ class EnvelopeService : public QObject {
   EnvelopeService(widgets::ProjectDocument& document, widgets::MapView& map, QObject* parent = nullptr);
   ~EnvelopeService() override;
   bool ready() const { return index_ != nullptr; }
+  // The index of the current plan, or null while it is being built (or the plan has no occluders).
+  std::shared_ptr<const VisibilityIndex> index() const { return index_; }
 
  signals:
   void index_ready();

@@ -13,6 +13,7 @@
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
 #include "app/studio/main_window.h"
+#include "app/studio/profile_service.h"
 #include "app/studio/studio_tasks.h"
 #include "widgets/sampling_panel.h"
 #include "widgets/task_runner.h"
@@ -35,6 +36,7 @@ int take_screenshot(plenopath::studio::MainWindow& window, const QString& file) 
   const int position = window.document().current_position();
   wait_until([&] { return window.panorama_view()->shown_position() == position; }, 20000);
   wait_until([&] { return window.envelopes()->ready() || window.document().project().plan.empty(); }, 20000);
+  wait_until([&] { return !window.profiles()->busy(); }, 30000);
   wait_until([] { return false; }, 500);  // let queued renders and repaints happen
   window.map_view()->render_now();
   const QPixmap pixmap = window.grab();

@@ -26,6 +26,7 @@
 
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
+#include "app/studio/profile_service.h"
 #include "app/studio/reactions.h"
 #include "app/studio/studio_tasks.h"
 #include "widgets/capture_import_dialog.h"
@@ -87,6 +88,7 @@ MainWindow::MainWindow(QWidget* parent)
 
   create_docks();
   create_actions();
+  profiles_ = new ProfileService(*document_, *envelopes_, *timeline_->strip(), this);
 
   // Status bar: the running task, its progress and Cancel.
   task_label_ = new QLabel(this);

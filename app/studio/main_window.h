@@ -25,6 +25,7 @@ namespace plenopath::studio {
 
 class Autosave;
 class EnvelopeService;
+class ProfileService;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -54,6 +55,7 @@ class MainWindow : public QMainWindow {
   widgets::SamplingPanel* sampling_panel() const { return sampling_; }
   widgets::TimelinePanel* timeline_panel() const { return timeline_; }
   EnvelopeService* envelopes() const { return envelopes_; }
+  ProfileService* profiles() const { return profiles_; }
 
   // Questions the window asks; tests replace them with fixed answers.
   std::function<bool(const QString& autosave_file)> ask_recovery;
@@ -83,6 +85,7 @@ class MainWindow : public QMainWindow {
   widgets::SamplingPanel* sampling_ = nullptr;
   widgets::LayersPanel* layers_ = nullptr;
   EnvelopeService* envelopes_ = nullptr;
+  ProfileService* profiles_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QToolButton* cancel_ = nullptr;
   QLabel* task_label_ = nullptr;

@@ -25,6 +25,7 @@
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
 #include "app/studio/main_window.h"
+#include "app/studio/profile_service.h"
 #include "app/studio/studio_tasks.h"
 #include "model/error.h"
 #include "model/project_io.h"
@@ -141,6 +142,29 @@ TEST(Studio, MapShowsTheEnvelopeOfTheCurrentFrame) {
   EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 4.5}), 3, is_envelope), 40);
   EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 1.0}), 3, is_background), 40);
   EXPECT_EQ(count_near(image, map->widget_pixel_of({6.0, 1.0}), 3, is_envelope), 0);
+}
+
+TEST(Studio, TimelineProfileHoldsTheEnvelopeAreaAlongThePath) {
+  // By hand: from frame 0 at (1, 3.5) the half wall hides the region right of x = 4 below the line through
+  // (4, 2.5) of slope -1/3: the trapezoid (4,0) (4,2.5) (8,1.1667) (8,0) of area 4 * (2.5 + 1.1667) / 2 =
+  // 7.333 m^2, so the envelope is 40 - 7.333 = 32.667 m^2; the last frame at (7, 3.5) is its mirror image.
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  ASSERT_TRUE(wait_until([&] {
+    return s.window.envelopes()->ready() && !s.window.profiles()->busy() &&
+           s.window.profiles()->profiles().envelope_area.size() == 30;
+  }));
+  const QVector<double>& area = s.window.profiles()->profiles().envelope_area;
+  // Tolerance: visibility thickens the dangling half wall to 1 cm (processing/visibility.h), which takes
+  // 2.5 m x 1 cm = 0.025 m^2 off the free space.
+  EXPECT_NEAR(area.front(), 40.0 - 22.0 / 3.0, 0.04);
+  EXPECT_NEAR(area.back(), 40.0 - 22.0 / 3.0, 0.04);
+  for (double a : area) {
+    EXPECT_GT(a, 32.0);
+    EXPECT_LE(a, 40.0 + 1e-6);
+  }
+  EXPECT_TRUE(s.window.profiles()->profiles().depth_volume.isEmpty()) << "the test capture has no depth";
 }
 
 TEST(Studio, ClickOnThePathGoesThere) {
