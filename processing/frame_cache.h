@@ -4,7 +4,10 @@
 // decodes the frames around the play head before they are asked for.
 //
 // Bytes counted are the pixel bytes of the Mats the cache holds. A Mat handed out by get() shares its pixels
-// with the cache; if the caller keeps it after eviction, that memory is the caller's, not the cache's.
+// with the cache: treat it as read-only (clone() before drawing on it); if the caller keeps it after
+// eviction, that memory is the caller's, not the cache's. Frames being decoded (at most one per calling
+// thread plus one on the worker) are not counted either. glibc keeps freed large blocks unless
+// mallopt(M_MMAP_THRESHOLD, 1 << 20) is set at start-up (see tests/bench/bench_frame_cache.cpp).
 // All public functions are thread-safe. The destructor cancels prefetching and joins the worker.
 #include <cstddef>
 #include <memory>
