@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "model/anchors_io.h"
 #include "model/atomic_file.h"
 #include "model/error.h"
 #include "model/json_reader.h"
@@ -137,29 +138,6 @@ Capture capture_from_json(const JsonReader& r, const std::string& base) {
 }
 
 // ---- anchors, visibility, keyframes, hotspots, geo, tour
-json anchors_to_json(const Anchors& anchors) {
-  json out = json::array();
-  for (const auto& a : anchors) {
-    json j = {{"index", a.frame}, {"x", a.position.x()}, {"y", a.position.y()}};
-    if (a.heading) j["heading_deg"] = degrees(*a.heading);
-    out.push_back(j);
-  }
-  return out;
-}
-
-Anchors anchors_from_json(const JsonReader& r) {
-  Anchors anchors;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const JsonReader a = r.at(i);
-    Anchor anchor;
-    anchor.frame = a.integer("index");
-    anchor.position = {a.number("x"), a.number("y")};
-    if (auto h = a.find("heading_deg")) anchor.heading = radians(h->number());
-    anchors.push_back(anchor);
-  }
-  return anchors;
-}
-
 json visibility_to_json(const VisibilityCells& v) {
   json events = json::array(), cells = json::array(), lines = json::array();
   for (const auto& e : v.events) events.push_back({{"frame", e.frame}, {"s", e.s}});

@@ -1,0 +1,295 @@
+#include "processing/anchors/anchor_refinement.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "model/error.h"
+
+namespace plenopath {
+namespace {
+
+std::size_t position_of(const CameraPath& path, int frame) {
+  auto it = std::lower_bound(path.frames.begin(), path.frames.end(), frame,
+                             [](const PathFrame& f, int i) { return f.index < i; });
+  if (it == path.frames.end() || it->index != frame)
+    throw Error("anchor on frame " + std::to_string(frame) + ", which the path does not have");
+  return static_cast<std::size_t>(it - path.frames.begin());
+}
+
+void apply(const Similarity2& s, PathFrame* f) {
+  const Eigen::Vector2d p = s.apply(f->position());
+  f->x = p.x();
+  f->y = p.y();
+  f->heading = wrap_angle(f->heading + s.rotation);
+}
+
+// Relative motion of step i -> i+1 expressed in frame i, as the tracker measured it, corrected by the
+// drift unknowns of its stretch of path: drift = {scale, turn bias per step}. A tracker's drift is a slow
+// heading bias and a scale error; modelling them keeps the solver from explaining them by bending the path.
+struct StepResidual {
+  StepResidual(const Eigen::Vector2d& local_step, double turn, double sigma_t, double sigma_r)
+      : local_step_(local_step), turn_(turn), sigma_t_(sigma_t), sigma_r_(sigma_r) {}
+
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* drift, T* residual) const {
+    const T dx = b[0] - a[0], dy = b[1] - a[1];
+    const T c = ceres::cos(a[2]), s = ceres::sin(a[2]);
+    residual[0] = (c * dx + s * dy - drift[0] * T(local_step_.x())) / T(sigma_t_);
+    residual[1] = (-s * dx + c * dy - drift[0] * T(local_step_.y())) / T(sigma_t_);
+    // Heading difference wrapped through atan2 so a turn across +-pi costs what it should.
+    const T d = b[2] - a[2] - (T(turn_) - drift[1]);
+    residual[2] = ceres::atan2(ceres::sin(d), ceres::cos(d)) / T(sigma_r_);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Vector2d& local_step, double turn, double sigma_t, double sigma_r) {
+    return new ceres::AutoDiffCostFunction<StepResidual, 3, 3, 3, 2>(
+        new StepResidual(local_step, turn, sigma_t, sigma_r));
+  }
+
+ private:
+  Eigen::Vector2d local_step_;
+  double turn_, sigma_t_, sigma_r_;
+};
+
+// Keeps the drift unknowns near "no drift" where the anchors say nothing about them.
+struct DriftPrior {
+  DriftPrior(double sigma_scale, double sigma_bias) : sigma_scale_(sigma_scale), sigma_bias_(sigma_bias) {}
+  template <typename T>
+  bool operator()(const T* drift, T* residual) const {
+    residual[0] = (drift[0] - T(1.0)) / T(sigma_scale_);
+    residual[1] = drift[1] / T(sigma_bias_);
+    return true;
+  }
+  static ceres::CostFunction* Create(double sigma_scale, double sigma_bias) {
+    return new ceres::AutoDiffCostFunction<DriftPrior, 2, 2>(new DriftPrior(sigma_scale, sigma_bias));
+  }
+
+ private:
+  double sigma_scale_, sigma_bias_;
+};
+
+struct AnchorPrior {
+  AnchorPrior(const Eigen::Vector2d& position, double sigma) : position_(position), sigma_(sigma) {}
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    residual[0] = (pose[0] - T(position_.x())) / T(sigma_);
+    residual[1] = (pose[1] - T(position_.y())) / T(sigma_);
+    return true;
+  }
+  static ceres::CostFunction* Create(const Eigen::Vector2d& position, double sigma) {
+    return new ceres::AutoDiffCostFunction<AnchorPrior, 2, 3>(new AnchorPrior(position, sigma));
+  }
+
+ private:
+  Eigen::Vector2d position_;
+  double sigma_;
+};
+
+struct HeadingPrior {
+  HeadingPrior(double heading, double sigma) : heading_(heading), sigma_(sigma) {}
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    const T d = pose[2] - T(heading_);
+    residual[0] = ceres::atan2(ceres::sin(d), ceres::cos(d)) / T(sigma_);
+    return true;
+  }
+  static ceres::CostFunction* Create(double heading, double sigma) {
+    return new ceres::AutoDiffCostFunction<HeadingPrior, 1, 3>(new HeadingPrior(heading, sigma));
+  }
+
+ private:
+  double heading_, sigma_;
+};
+
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  explicit ProgressCallback(const RefinementProgress& progress) : progress_(progress) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    if (progress_ && !progress_(summary.iteration)) {
+      cancelled = true;
+      return ceres::SOLVER_ABORT;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+  bool cancelled = false;
+
+ private:
+  const RefinementProgress& progress_;
+};
+
+}  // namespace
+
+Similarity2 similarity_to_anchors(const CameraPath& path, const Anchors& anchors) {
+  if (anchors.empty()) throw Error("aligning a path needs at least one anchor");
+  std::vector<Eigen::Vector2d> from, to;
+  for (const Anchor& a : anchors) {
+    from.push_back(path.frames[position_of(path, a.frame)].position());
+    to.push_back(a.position);
+  }
+  if (anchors.size() == 1) {
+    Similarity2 s;
+    s.translation = to[0] - from[0];
+    return s;
+  }
+  return align_similarity(from, to);
+}
+
+CameraPath align_path_to_anchors(const CameraPath& path, const Anchors& anchors) {
+  const Similarity2 s = similarity_to_anchors(path, anchors);
+  CameraPath out = path;
+  for (PathFrame& f : out.frames) apply(s, &f);
+  return out;
+}
+
+CameraPath preview_path_with_anchors(const CameraPath& path, const Anchors& anchors) {
+  if (anchors.empty()) return path;
+  if (anchors.size() == 1) return align_path_to_anchors(path, anchors);
+  // Anchors in path order, each with its position along the path.
+  std::vector<std::pair<std::size_t, const Anchor*>> ordered;
+  for (const Anchor& a : anchors) ordered.emplace_back(position_of(path, a.frame), &a);
+  std::sort(ordered.begin(), ordered.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+  const std::vector<double> s = path.arc_lengths();
+  // One exact similarity per consecutive pair (identical frames anchored twice: a translation).
+  std::vector<Similarity2> pieces;
+  for (std::size_t k = 0; k + 1 < ordered.size(); ++k) {
+    const Anchor& a = *ordered[k].second;
+    const Anchor& b = *ordered[k + 1].second;
+    const Eigen::Vector2d pa = path.frames[ordered[k].first].position();
+    const Eigen::Vector2d pb = path.frames[ordered[k + 1].first].position();
+    if ((pb - pa).norm() < 1e-9 || (b.position - a.position).norm() < 1e-9) {
+      Similarity2 t;
+      t.translation = a.position - pa;
+      pieces.push_back(t);
+    } else {
+      pieces.push_back(align_similarity({pa, pb}, {a.position, b.position}));
+    }
+  }
+  // Positions: the piece between the frame's two anchors (pieces agree at the anchors, so the path stays
+  // connected). Headings: the pieces' rotations averaged at each anchor and interpolated by arc length, so
+  // headings do not jump at an anchor either.
+  std::vector<double> rotation_at_anchor(ordered.size());
+  for (std::size_t k = 0; k < ordered.size(); ++k) {
+    const double left = pieces[k == 0 ? 0 : k - 1].rotation;
+    const double right = pieces[std::min(k, pieces.size() - 1)].rotation;
+    rotation_at_anchor[k] = left + 0.5 * std::remainder(right - left, 2 * M_PI);
+  }
+  CameraPath out = path;
+  std::size_t piece = 0;
+  for (std::size_t i = 0; i < out.frames.size(); ++i) {
+    while (piece + 1 < pieces.size() && i > ordered[piece + 1].first) ++piece;
+    const std::size_t begin = ordered[piece].first, end = ordered[piece + 1].first;
+    const double span = s[end] - s[begin];
+    const double t = std::clamp(span > 0 ? (s[i] - s[begin]) / span : 0.0, 0.0, 1.0);
+    const double r0 = rotation_at_anchor[piece], r1 = rotation_at_anchor[piece + 1];
+    const Eigen::Vector2d p = pieces[piece].apply(path.frames[i].position());
+    out.frames[i].x = p.x();
+    out.frames[i].y = p.y();
+    out.frames[i].heading = wrap_angle(path.frames[i].heading + r0 + t * std::remainder(r1 - r0, 2 * M_PI));
+  }
+  return out;
+}
+
+void AnchorRefinementOptions::check() const {
+  if (!(step_sigma_fraction > 0)) throw Error("anchor refinement: step_sigma_fraction must be > 0");
+  if (!(step_sigma_min_m > 0)) throw Error("anchor refinement: step_sigma_min_m must be > 0");
+  if (!(turn_sigma_rad > 0)) throw Error("anchor refinement: turn_sigma_rad must be > 0");
+  if (!(anchor_sigma_m > 0)) throw Error("anchor refinement: anchor_sigma_m must be > 0");
+  if (!(anchor_heading_sigma_rad > 0)) throw Error("anchor refinement: anchor_heading_sigma_rad must be > 0");
+  if (max_iterations < 1) throw Error("anchor refinement: max_iterations must be >= 1");
+  if (!(drift_scale_sigma > 0) || !(drift_bias_sigma_rad > 0))
+    throw Error("anchor refinement: drift sigmas must be > 0");
+}
+
+CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
+                                    const AnchorRefinementOptions& options, AnchorRefinementReport* report,
+                                    const RefinementProgress& progress) {
+  options.check();
+  if (path.empty()) throw Error("anchor refinement: the path is empty");
+  if (anchors.empty()) throw Error("anchor refinement: place at least one anchor");
+  for (const Anchor& a : anchors) position_of(path, a.frame);  // validates every anchor first
+
+  // Start from the similarity alignment, so the solver only has to bend, not to turn the whole path.
+  const CameraPath start = align_path_to_anchors(path, anchors);
+  std::vector<std::array<double, 3>> poses(start.frames.size());
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    poses[i] = {start.frames[i].x, start.frames[i].y, start.frames[i].heading};
+
+  // The tracker's drift {scale, turn bias per step}, one for the whole path. Per-stretch drift would leave
+  // each stretch one unknown more than its anchor pins down (its start heading, scale and bias against two
+  // coordinates); one global drift is determined by three anchors and over-determined by more.
+  std::set<int> anchored_frames;
+  for (const Anchor& a : anchors) anchored_frames.insert(a.frame);
+  std::array<double, 2> drift = {1.0, 0.0};
+
+  ceres::Problem problem;
+  problem.AddParameterBlock(drift.data(), 2);
+  problem.AddResidualBlock(DriftPrior::Create(options.drift_scale_sigma, options.drift_bias_sigma_rad), nullptr,
+                           drift.data());
+  if (anchored_frames.size() < 2) problem.SetParameterBlockConstant(drift.data());  // one anchor cannot see drift
+  for (std::size_t i = 0; i + 1 < start.frames.size(); ++i) {
+    const PathFrame& a = start.frames[i];
+    const PathFrame& b = start.frames[i + 1];
+    const Eigen::Vector2d d = b.position() - a.position();
+    const double c = std::cos(a.heading), s = std::sin(a.heading);
+    const Eigen::Vector2d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+    const double sigma_t = std::max(options.step_sigma_min_m, options.step_sigma_fraction * d.norm());
+    problem.AddResidualBlock(
+        StepResidual::Create(local, std::remainder(b.heading - a.heading, 2 * M_PI), sigma_t, options.turn_sigma_rad),
+        nullptr, poses[i].data(), poses[i + 1].data(), drift.data());
+  }
+  for (const Anchor& anchor : anchors) {
+    double* pose = poses[position_of(start, anchor.frame)].data();
+    problem.AddResidualBlock(AnchorPrior::Create(anchor.position, options.anchor_sigma_m), nullptr, pose);
+    if (anchor.heading)
+      problem.AddResidualBlock(HeadingPrior::Create(*anchor.heading, options.anchor_heading_sigma_rad), nullptr, pose);
+  }
+  // A single anchor without heading leaves the rotation about it free: hold that frame's heading.
+  if (anchors.size() == 1 && !anchors[0].heading)
+    problem.AddResidualBlock(HeadingPrior::Create(poses[position_of(start, anchors[0].frame)][2], 1e-3), nullptr,
+                             poses[position_of(start, anchors[0].frame)].data());
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain: banded, sparse
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 2;
+  solver.logging_type = ceres::SILENT;
+  ProgressCallback callback(progress);
+  solver.callbacks.push_back(&callback);
+  solver.update_state_every_iteration = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+
+  AnchorRefinementReport local_report;
+  AnchorRefinementReport& r = report ? *report : local_report;
+  r.iterations = static_cast<int>(summary.iterations.size());
+  r.initial_cost = summary.initial_cost;
+  r.final_cost = summary.final_cost;
+  r.message = summary.BriefReport();
+  r.cancelled = callback.cancelled;
+  r.residuals.clear();
+  if (callback.cancelled) return path;
+
+  CameraPath out = start;
+  for (std::size_t i = 0; i < out.frames.size(); ++i) {
+    out.frames[i].x = poses[i][0];
+    out.frames[i].y = poses[i][1];
+    out.frames[i].heading = wrap_angle(poses[i][2]);
+  }
+  for (const Anchor& anchor : anchors) {
+    const PathFrame& f = out.frames[position_of(out, anchor.frame)];
+    AnchorResidual res;
+    res.frame = anchor.frame;
+    res.distance_m = (f.position() - anchor.position).norm();
+    if (anchor.heading) res.heading_error_deg = std::abs(degrees(wrap_angle(f.heading - *anchor.heading)));
+    r.residuals.push_back(res);
+  }
+  return out;
+}
+
+}  // namespace plenopath

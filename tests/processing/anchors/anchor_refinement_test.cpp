@@ -1,0 +1,158 @@
+// Drift correction by anchors, against the synthetic walk's ground truth.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "model/error.h"
+#include "processing/anchors/anchor_refinement.h"
+#include "processing/egomotion/path_evaluation.h"
+#include "rig/synthetic_camera.h"
+
+namespace plenopath {
+namespace {
+
+CameraPath truth_walk(std::size_t frames) {
+  CameraPath walk = auto_walk(make_office_sample_plan());
+  if (walk.frames.size() > frames) walk.frames.resize(frames);
+  return walk;
+}
+
+// Integrates the truth's own steps with a slow heading bias and a scale error, as a drifting tracker would.
+CameraPath drifted(const CameraPath& truth, double bias_rad_per_frame, double scale) {
+  CameraPath out = truth;
+  Eigen::Vector2d p = truth.frames.front().position() + Eigen::Vector2d(0.7, -0.4);
+  double extra = 0.1;  // the drifted path also starts slightly turned
+  for (std::size_t i = 0; i < truth.frames.size(); ++i) {
+    if (i > 0) {
+      const Eigen::Vector2d step = truth.frames[i].position() - truth.frames[i - 1].position();
+      extra += bias_rad_per_frame;
+      const double c = std::cos(extra), s = std::sin(extra);
+      p += scale * Eigen::Vector2d(c * step.x() - s * step.y(), s * step.x() + c * step.y());
+    }
+    out.frames[i].x = p.x();
+    out.frames[i].y = p.y();
+    out.frames[i].heading = wrap_angle(truth.frames[i].heading + extra);
+  }
+  return out;
+}
+
+Anchors anchors_at(const CameraPath& truth, std::vector<std::size_t> positions) {
+  Anchors anchors;
+  for (std::size_t i : positions) anchors.push_back({truth.frames[i].index, truth.frames[i].position(), std::nullopt});
+  return anchors;
+}
+
+TEST(AnchorRefinement, ThreeAnchorsUndoDrift) {
+  const CameraPath truth = truth_walk(900);
+  const CameraPath drift = drifted(truth, 0.02 * M_PI / 180.0, 1.05);  // 18 deg of bias over the walk, +5 %
+  const std::size_t n = truth.frames.size();
+  const Anchors anchors = anchors_at(truth, {0, n / 2, n - 1});
+  AnchorRefinementReport report;
+  const auto t0 = std::chrono::steady_clock::now();
+  const CameraPath refined = refine_path_with_anchors(drift, anchors, {}, &report);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("%s\n", report.message.c_str());
+  const PathErrors before = evaluate_path(drift, truth);
+  const PathErrors after = evaluate_path(refined, truth);
+  std::printf("anchor refinement: ATE %.3f m -> %.3f m (%.1fx) over %.1f m, %d iterations, %.2f s\n",
+              before.ate_rms_m, after.ate_rms_m, before.ate_rms_m / after.ate_rms_m, before.truth_length_m,
+              report.iterations, seconds);
+  EXPECT_GT(before.ate_rms_m / after.ate_rms_m, 5.0);
+  ASSERT_EQ(report.residuals.size(), 3u);
+  for (const AnchorResidual& r : report.residuals) EXPECT_LT(r.distance_m, 0.05) << "frame " << r.frame;
+  // The residuals report what the path really does.
+  for (const Anchor& a : anchors) EXPECT_LT((refined.find_frame(a.frame)->position() - a.position).norm(), 0.05);
+  // Absolute (unaligned) error too: the anchors put the path on the plan.
+  double worst = 0;
+  for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, (refined.frames[i].position() - truth.frames[i].position()).norm());
+  EXPECT_LT(worst, 0.5);
+}
+
+TEST(AnchorRefinement, SimilarityFromTwoAnchorsIsExact) {
+  const CameraPath truth = truth_walk(300);
+  Similarity2 known;
+  known.scale = 0.8;
+  known.rotation = 1.1;
+  known.translation = {3, -7};
+  CameraPath moved = truth;
+  for (PathFrame& f : moved.frames) {
+    const Eigen::Vector2d p = known.apply(f.position());
+    f.x = p.x();
+    f.y = p.y();
+    f.heading = wrap_angle(f.heading + known.rotation);
+  }
+  const CameraPath back = align_path_to_anchors(moved, anchors_at(truth, {10, 250}));
+  for (std::size_t i = 0; i < truth.frames.size(); ++i) {
+    EXPECT_LT((back.frames[i].position() - truth.frames[i].position()).norm(), 1e-9);
+    EXPECT_NEAR(std::remainder(back.frames[i].heading - truth.frames[i].heading, 2 * M_PI), 0.0, 1e-9);
+  }
+  // One anchor: a translation only.
+  const Similarity2 t = similarity_to_anchors(moved, anchors_at(truth, {5}));
+  EXPECT_DOUBLE_EQ(t.scale, 1.0);
+  EXPECT_DOUBLE_EQ(t.rotation, 0.0);
+}
+
+TEST(AnchorRefinement, PreviewKeepsAnchorsAndStaysConnected) {
+  const CameraPath truth = truth_walk(600);
+  const CameraPath drift = drifted(truth, 0.02 * M_PI / 180.0, 1.05);
+  const Anchors anchors = anchors_at(truth, {0, 200, 599});
+  const auto t0 = std::chrono::steady_clock::now();
+  const CameraPath preview = preview_path_with_anchors(drift, anchors);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("preview of 600 frames: %.3f ms\n", ms);
+  for (const Anchor& a : anchors) EXPECT_LT((preview.find_frame(a.frame)->position() - a.position).norm(), 1e-9);
+  // Connected: no step longer than three times the drifted path's longest step.
+  double longest = 0, longest_preview = 0;
+  for (std::size_t i = 1; i < drift.frames.size(); ++i) {
+    longest = std::max(longest, (drift.frames[i].position() - drift.frames[i - 1].position()).norm());
+    longest_preview = std::max(longest_preview, (preview.frames[i].position() - preview.frames[i - 1].position()).norm());
+  }
+  EXPECT_LT(longest_preview, 3 * longest);
+  EXPECT_LT(evaluate_path(preview, truth).ate_rms_m, evaluate_path(drift, truth).ate_rms_m);
+}
+
+TEST(AnchorRefinement, HeadingAnchorsAreHonoured) {
+  const CameraPath truth = truth_walk(200);
+  Anchors anchors = anchors_at(truth, {0, 199});
+  anchors[1].heading = truth.frames[199].heading + 0.2;  // the author insists on a turned heading
+  AnchorRefinementReport report;
+  const CameraPath refined = refine_path_with_anchors(truth, anchors, {}, &report);
+  EXPECT_NEAR(std::remainder(refined.frames[199].heading - *anchors[1].heading, 2 * M_PI), 0.0, 0.03);
+  EXPECT_LT(report.residuals[1].heading_error_deg, 2.0);
+}
+
+TEST(AnchorRefinement, CancelReturnsThePathUnchanged) {
+  const CameraPath truth = truth_walk(300);
+  const CameraPath drift = drifted(truth, 0.05 * M_PI / 180.0, 1.1);
+  AnchorRefinementReport report;
+  const CameraPath out = refine_path_with_anchors(drift, anchors_at(truth, {0, 299}), {}, &report,
+                                                  [](int) { return false; });
+  EXPECT_TRUE(report.cancelled);
+  EXPECT_EQ(out, drift);
+}
+
+TEST(AnchorRefinement, BadInputGetsClearErrors) {
+  const CameraPath truth = truth_walk(50);
+  EXPECT_THROW(refine_path_with_anchors(truth, {}), Error);
+  EXPECT_THROW(refine_path_with_anchors(CameraPath{}, anchors_at(truth, {0})), Error);
+  Anchors off = {{123456, {0, 0}, std::nullopt}};
+  try {
+    refine_path_with_anchors(truth, off);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("123456"), std::string::npos);
+  }
+  AnchorRefinementOptions bad;
+  bad.anchor_sigma_m = 0;
+  EXPECT_THROW(refine_path_with_anchors(truth, anchors_at(truth, {0}), bad), Error);
+  // Two anchors on the same spot and the path standing still: no division by zero.
+  CameraPath still;
+  still.frames = {{0, "", 1, 1, 0, 1, 0, ""}, {1, "", 1, 1, 0, 1, 0, ""}};
+  const Anchors same = {{0, {2, 2}, std::nullopt}, {1, {2, 2}, std::nullopt}};
+  const CameraPath p = preview_path_with_anchors(still, same);
+  EXPECT_TRUE(std::isfinite(p.frames[1].x));
+}
+
+}  // namespace
+}  // namespace plenopath
