@@ -12,6 +12,9 @@
 //   leave that rectangle without hitting anything have no hit (depth 0, sky colour);
 // - people (RenderOptions::people) are vertical cylinders with a flat top.
 // The panorama follows rig/spherical.h: centre column = heading, azimuth grows clockwise seen from above.
+// Speed: one 2-D ray cast per panorama column (through a uniform grid over the faces) collects the faces the
+// column can see, then every pixel of the column walks that short list with its own elevation; both passes
+// run on OpenCV's thread pool. tests/bench/bench_render.cpp measures it.
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
