@@ -16,7 +16,7 @@ render_args=(render --plan "$sample_dir/office.dxf" --path "$sample_dir/office_p
 "$cli" --version
 if [[ ! -f "$project" || ! -f "$sample_dir/office.dxf" || ! -f "$sample_dir/office_path.json" ]]; then
   echo "Writing the office sample (plan, path, project)…"
-  "$cli" sample --out "$sample_dir"
+  "$cli" make-sample --out "$sample_dir"
 fi
 
 # The capture is up to date when it was rendered by this version with these arguments after the inputs

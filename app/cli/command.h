@@ -20,13 +20,13 @@ struct Command {
 // One line per subcommand; keep alphabetical. Each lives in command_<name>.cpp.
 Command add_capture_info_command(CLI::App& parent);
 Command add_encode_video_command(CLI::App& parent);
-Command add_export_command(CLI::App& parent);
 Command add_eval_path_command(CLI::App& parent);
+Command add_export_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
+Command add_make_sample_command(CLI::App& parent);
 Command add_plan_info_command(CLI::App& parent);
 Command add_refine_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
-Command add_sample_command(CLI::App& parent);
 Command add_stitch_command(CLI::App& parent);
 Command add_track_command(CLI::App& parent);
 Command add_visibility_command(CLI::App& parent);

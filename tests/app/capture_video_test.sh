@@ -6,7 +6,7 @@ cli=$1
 fail() { echo "FAIL: $*"; exit 1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
-"$cli" sample --out "$tmp/sample" --frames 10 > /dev/null || fail "sample exit $?"
+"$cli" make-sample --out "$tmp/sample" --frames 10 > /dev/null || fail "sample exit $?"
 "$cli" render --plan "$tmp/sample/office.dxf" --path "$tmp/sample/office_path.json" --frames 10 --size 256x128 \
   --depth --quiet --out "$tmp/r" > /dev/null || fail "render exit $?"
 [[ $(ls "$tmp/r/frames" | wc -l) -eq 10 ]] || fail "render wrote $(ls "$tmp/r/frames" | wc -l) frames"

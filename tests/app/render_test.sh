@@ -6,7 +6,7 @@ cli=$1; data=$2
 fail() { echo "FAIL: $*"; exit 1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
-"$cli" sample --out "$tmp/sample" --frames 20 > "$tmp/sample.txt" || fail "sample exit $?"
+"$cli" make-sample --out "$tmp/sample" --frames 20 > "$tmp/sample.txt" || fail "sample exit $?"
 for f in office.dxf office_path.json office.plenopath; do [[ -s "$tmp/sample/$f" ]] || fail "sample did not write $f"; done
 grep -q '^\$INSUNITS' "$tmp/sample/office.dxf" || grep -q 'INSUNITS' "$tmp/sample/office.dxf" || fail "no \$INSUNITS"
 for layer in WALLS COLUMNS DOORS FURNITURE TEXT; do grep -qx "$layer" "$tmp/sample/office.dxf" || fail "layer $layer missing"; done

@@ -1,4 +1,4 @@
-// `plenopath sample --out DIR [--frames N] [--size 1024x512]`: writes the office sample: DIR/office.dxf
+// `plenopath make-sample --out DIR [--frames N] [--size 1024x512]`: writes the office sample: DIR/office.dxf
 // (millimetres, layers WALLS, COLUMNS, DOORS with swing arcs, FURNITURE as block inserts, TEXT labels),
 // DIR/office_path.json (the default walk) and DIR/office.plenopath (the plan imported from the DXF, the walk,
 // and a capture in DIR/capture/ that `plenopath render` fills; `make run` does that).
@@ -67,9 +67,9 @@ int run(const Options& o) {
 
 }  // namespace
 
-Command add_sample_command(CLI::App& parent) {
+Command add_make_sample_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("sample", "Write the office sample: DXF plan, default path, project");
+  CLI::App* sub = parent.add_subcommand("make-sample", "Write the office sample: DXF plan, default path, project");
   sub->add_option("--out", o->out, "Folder")->capture_default_str();
   sub->add_option("--frames", o->frames, "Frames of the default walk")->capture_default_str();
   sub->add_option("--size", o->size, "Capture size the project expects")->capture_default_str();
