@@ -4,13 +4,14 @@
 #include <exception>
 #include <opencv2/imgproc.hpp>
 
+#include "processing/frame_cache.h"
 #include "processing/frame_source.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
 
 namespace {
-constexpr qint64 kCacheBytes = qint64(384) << 20;
+constexpr qint64 kCacheBytes = qint64(128) << 20;
 }
 
 FrameProvider::FrameProvider(ProjectDocument& document, QObject* parent) : QObject(parent), document_(document) {
@@ -28,6 +29,7 @@ void FrameProvider::reopen() {
   cache_.clear();
   cache_bytes_ = 0;
   source_.reset();
+  frame_cache_.reset();
   error_.clear();
   const Capture& capture = document_.project().capture;
   if (capture.empty()) {
@@ -36,6 +38,9 @@ void FrameProvider::reopen() {
   }
   try {
     source_ = FrameSource::open_capture(capture);
+    FrameCacheOptions options;
+    options.frame_bytes_bound = std::size_t(256) << 20;
+    frame_cache_ = std::make_shared<FrameCache>(source_, options);
   } catch (const std::exception& e) {
     error_ = QString::fromStdString(e.what());
   }
@@ -76,12 +81,16 @@ void FrameProvider::start(int position) {
   decoding_ = position;
   decoding_generation_ = generation_;
   std::shared_ptr<FrameSource> source = source_;
+  std::shared_ptr<FrameCache> cache = frame_cache_;
   const int i = source_index_of(position);
-  watcher_.setFuture(QtConcurrent::run([source, i]() -> std::pair<QImage, QString> {
+  const int direction = position >= last_position_ ? +1 : -1;
+  last_position_ = position;
+  watcher_.setFuture(QtConcurrent::run([source, cache, i, direction]() -> std::pair<QImage, QString> {
     try {
       if (i < 0 || i >= source->frame_count())
         return {QImage(), QObject::tr("frame %1 is not in the capture (%2 frames)").arg(i).arg(source->frame_count())};
-      const cv::Mat bgr = source->read(i);
+      const cv::Mat bgr = cache->get(i);
+      cache->prefetch(i, direction);  // decode what playback or scrubbing will ask for next
       cv::Mat rgba;
       cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
       QImage image(rgba.data, rgba.cols, rgba.rows, static_cast<int>(rgba.step), QImage::Format_RGBA8888);

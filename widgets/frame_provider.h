@@ -1,6 +1,7 @@
 #pragma once
-// Frames of the document's capture for the views, decoded off the GUI thread (processing/frame_source.h)
-// and kept in a small byte-bounded cache. Requests are latest-wins: while one frame decodes, only the most
+// Frames of the document's capture for the views, decoded off the GUI thread through processing's
+// FrameCache (frame_source.h, frame_cache.h: byte-bounded LRU, prefetch around the play head in the
+// direction of travel); the last few converted images are kept here too. Requests are latest-wins: while one frame decodes, only the most
 // recent request waits, so scrubbing and playback never queue up work.
 #include <QFutureWatcher>
 #include <QImage>
@@ -11,6 +12,7 @@
 #include <utility>
 
 namespace plenopath {
+class FrameCache;
 class FrameSource;
 }
 
@@ -44,6 +46,8 @@ class FrameProvider : public QObject {
 
   ProjectDocument& document_;
   std::shared_ptr<FrameSource> source_;
+  std::shared_ptr<FrameCache> frame_cache_;
+  int last_position_ = 0;
   QString error_;
   QList<std::pair<int, QImage>> cache_;  // most recent first
   qint64 cache_bytes_ = 0;

@@ -38,6 +38,7 @@
 #include "widgets/project_document.h"
 #include "widgets/sampling_panel.h"
 #include "widgets/task_runner.h"
+#include "widgets/timeline.h"
 
 namespace plenopath {
 namespace {
@@ -215,6 +216,27 @@ TEST(Studio, SteppingFramesChangesThePanorama) {
   QTest::keyClick(pano, Qt::Key_E);
   EXPECT_TRUE(pano->equirect_mode());
   EXPECT_GT(mean_abs_difference(later, pano->grabFramebuffer()), 3.0);
+}
+
+TEST(Studio, PlayAdvancesAtTheCaptureFrameRate) {
+  // The test capture runs at 10 frames per second: about 10 frames in one second of playback (loose bounds:
+  // timers on a loaded CI machine fire late, never early), and the panorama keeps up with the play head.
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::TimelinePanel* timeline = s.window.timeline_panel();
+  QElapsedTimer clock;
+  clock.start();
+  timeline->set_playing(true);
+  QTest::qWait(1000);
+  const int position = s.window.document().current_position();
+  const double seconds = clock.elapsed() / 1000.0;
+  timeline->set_playing(false);
+  EXPECT_LE(position, static_cast<int>(10 * seconds) + 1);
+  EXPECT_GE(position, 4);
+  EXPECT_TRUE(wait_until([&] { return s.window.panorama_view()->shown_position() == position; }, 5000));
+  QTest::qWait(300);
+  EXPECT_EQ(s.window.document().current_position(), position) << "paused";
 }
 
 TEST(Studio, PanoramaFollowsTheEquirectConvention) {
