@@ -5,6 +5,7 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QPainter>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
@@ -34,12 +35,20 @@ void wait_until(Done done, int timeout_ms) {
 int take_screenshot(plenopath::studio::MainWindow& window, const QString& file) {
   using namespace plenopath;
   const int position = window.document().current_position();
-  wait_until([&] { return window.panorama_view()->shown_position() == position; }, 20000);
+  if (window.document().frame_count() > 0)
+    wait_until([&] { return window.panorama_view()->shown_position() == position; }, 20000);
   wait_until([&] { return window.envelopes()->ready() || window.document().project().plan.empty(); }, 20000);
   wait_until([&] { return !window.profiles()->busy(); }, 30000);
   wait_until([] { return false; }, 500);  // let queued renders and repaints happen
   window.map_view()->render_now();
-  const QPixmap pixmap = window.grab();
+  QPixmap pixmap = window.grab();
+  // QWidget::grab redirects the panorama's QPainter overlay (captions, hotspots) away from its framebuffer;
+  // the panorama's own framebuffer grab has it, so paste that in.
+  {
+    QPainter painter(&pixmap);
+    QWidget* pano = window.panorama_view();
+    painter.drawImage(pano->mapTo(&window, QPoint(0, 0)), window.panorama_view()->grabFramebuffer());
+  }
   if (!pixmap.save(file)) {
     std::fprintf(stderr, "plenopath-studio: cannot write the screenshot %s\n", qPrintable(file));
     return 1;
@@ -85,7 +94,13 @@ int main(int argc, char** argv) {
   const QStringList args = parser.positionalArguments();
   bool opened = true;
   if (!args.isEmpty()) {
-    if (parser.isSet(screenshot)) window.ask_recovery = [](const QString&) { return false; };
+    if (parser.isSet(screenshot)) {
+      // Unattended: no question may block, errors go to stderr.
+      window.ask_recovery = [](const QString&) { return false; };
+      window.show_error = [](const QString& title, const QString& message) {
+        std::fprintf(stderr, "plenopath-studio: %s: %s\n", qPrintable(title), qPrintable(message));
+      };
+    }
     opened = window.open_project(args.first());
   } else if (!parser.isSet(screenshot)) {
     QTimer::singleShot(0, &window, [&window] { window.offer_untitled_recovery(); });
@@ -106,7 +121,7 @@ int main(int argc, char** argv) {
     p->set_look(parser.value(look).toDouble() * M_PI / 180.0, p->elevation(), p->fov());
   }
   if (parser.isSet(screenshot)) {
-    if (!opened) return 1;
+    if (!opened) return 1;  // the error went to stderr
     return take_screenshot(window, parser.value(screenshot));
   }
   return QApplication::exec();
