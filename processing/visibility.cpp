@@ -116,7 +116,10 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     };
     for (const auto& w : windows) add_crossings(w.a, w.b);
     for (const auto& wall : effective_segments()) add_crossings(wall.a, wall.b);
-    std::sort(raw.begin(), raw.end(), [](const VisibilityEvent& l, const VisibilityEvent& r) { return l.s < r.s; });
+    // (s, frame): a total order, so the result does not depend on the threads' order of the windows.
+    std::sort(raw.begin(), raw.end(), [](const VisibilityEvent& l, const VisibilityEvent& r) {
+      return l.s != r.s ? l.s < r.s : l.frame < r.frame;
+    });
     for (const auto& e : raw) {
       if (!result.events.empty() && e.s - result.events.back().s <= options().event_merge_distance_m) continue;
       result.events.push_back(e);
@@ -139,15 +142,15 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
       bounds.push_back(e.s);
   bounds.push_back(total);
   auto area_at = [&](double s) -> double {
-    const Envelope e = envelope(point_at(points, s_at, s));
-    return e.status == EnvelopeStatus::ok ? e.area : -1.0;
+    const Eigen::Vector2d q = point_at(points, s_at, s);
+    return classify(q) == EnvelopeStatus::ok ? envelope_area(q) : -1.0;
   };
   // Envelope areas: at each cell's middle (and at the events for Simpson's rule), on several threads.
   std::vector<double> queries_s;
   for (std::size_t c = 0; c + 1 < bounds.size(); ++c) queries_s.push_back(0.5 * (bounds[c] + bounds[c + 1]));
   if (options().area_mean_simpson) queries_s.insert(queries_s.end(), bounds.begin(), bounds.end());
   std::vector<double> query_area(queries_s.size(), -1.0);
-  {
+  if (options().cell_areas) {
     int threads = options().threads > 0 ? options().threads
                                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     threads = std::max(1, std::min<int>(threads, static_cast<int>(queries_s.size() / 16) + 1));

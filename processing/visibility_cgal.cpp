@@ -37,6 +37,8 @@ using Locator = CGAL::Arr_landmarks_point_location<Arrangement>;
 // The regularization tag is spelled out: the 5.5.1 headers' default differs from the manual.
 using TriangularVisibility = CGAL::Triangular_expansion_visibility_2<Arrangement, CGAL::Tag_true>;
 using SweepVisibility = CGAL::Rotational_sweep_visibility_2<Arrangement, CGAL::Tag_true>;
+// Unregularized: may leave needles in the output, which add no area; used where only the area counts.
+using TriangularVisibilityRaw = CGAL::Triangular_expansion_visibility_2<Arrangement, CGAL::Tag_false>;
 
 enum FaceKind : int { kUnset = -1, kOutside = 0, kFree = 1, kObstacle = 2, kWallInterior = 3 };
 
@@ -105,6 +107,7 @@ struct VisibilityIndex::Impl {
   mutable std::mutex visibility_mutex;
   mutable std::map<std::thread::id, std::unique_ptr<TriangularVisibility>> triangular;
   mutable std::map<std::thread::id, std::unique_ptr<SweepVisibility>> sweep;
+  mutable std::map<std::thread::id, std::unique_ptr<TriangularVisibilityRaw>> triangular_raw;
 
   template <typename V>
   V& visibility_for_this_thread(std::map<std::thread::id, std::unique_ptr<V>>* objects) const {
@@ -277,6 +280,20 @@ Envelope VisibilityIndex::envelope(const Eigen::Vector2d& p) const {
     e.area = -e.area;
   }
   return e;
+}
+
+double VisibilityIndex::envelope_area(const Eigen::Vector2d& p) const {
+  Arrangement::Face_const_handle face;
+  if (impl_->locate(p, &face) != EnvelopeStatus::ok) return 0.0;
+  const auto polygon = impl_->visibility_polygon(impl_->visibility_for_this_thread(&impl_->triangular_raw),
+                                                 Point(p.x(), p.y()), face);
+  double twice = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const auto& a = polygon[i];
+    const auto& b = polygon[(i + 1) % polygon.size()];
+    twice += a.x() * b.y() - a.y() * b.x();
+  }
+  return 0.5 * std::abs(twice);
 }
 
 std::vector<PlanSegment> VisibilityIndex::effective_segments() const {

@@ -79,6 +79,13 @@ double thread_cpu_us() {
   return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
 }
 
+bool same_events(const VisibilityCells& a, const VisibilityCells& b) {
+  if (a.events.size() != b.events.size()) return false;
+  for (std::size_t i = 0; i < a.events.size(); ++i)
+    if (std::abs(a.events[i].s - b.events[i].s) > 1e-9) return false;
+  return true;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -148,6 +155,20 @@ int main() {
   const double sweep_us = median(time_queries(sweep, few, &sweep_area));
   time_queries(tri, few, &tri_few_area);
 
+  // Corridor points see into every room: the heaviest queries along the benchmark path.
+  std::vector<Eigen::Vector2d> corridor;
+  for (int k = 0; k < 40; ++k) corridor.push_back({1.7 + 2.9 * k, 20.3});
+  double corridor_area = 0.0;
+  const double corridor_us = median(time_queries(tri, corridor, &corridor_area));
+  std::vector<double> area_only_us;
+  double area_only_sum = 0.0;
+  for (const auto& p : corridor) {
+    const double c0 = thread_cpu_us();
+    area_only_sum += tri.envelope_area(p);
+    area_only_us.push_back(thread_cpu_us() - c0);
+  }
+  const double corridor_area_only_us = median(area_only_us);
+
   // Stress case: an open hall with 250 free-standing pillars (many holes: the triangular expansion's
   // query time grows with them).
   const FloorPlan hall_plan = hall(&rng);
@@ -158,8 +179,16 @@ int main() {
   // 10 000 frames: along the corridor and back, then into and out of a room.
   const CameraPath path = polyline_path({{1, 20.5}, {119, 20.5}, {119, 19.5}, {61.5, 19.5}, {61.5, 12}, {61.5, 19.5},
                                          {1, 19.5}}, 10000);
+  VisibilityOptions events_only_options;
+  events_only_options.cell_areas = false;
+  const VisibilityIndex events_only(plan, events_only_options);
   t0 = Clock::now();
-  const std::clock_t c0 = std::clock();
+  std::clock_t c0 = std::clock();
+  const VisibilityCells events_only_cells = events_only.cells_along_path(path);
+  const double events_only_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double events_only_cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  t0 = Clock::now();
+  c0 = std::clock();
   const VisibilityCells cells = tri.cells_along_path(path);
   const double events_s = std::chrono::duration<double>(Clock::now() - t0).count();
   const double events_cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
@@ -172,12 +201,18 @@ int main() {
             << ", \"speedup\": " << std::max(tri_us, sweep_us) / std::min(tri_us, sweep_us)
             << ", \"areas_agree\": " << (std::abs(tri_few_area - sweep_area) <= 1e-6 * tri_few_area ? "true" : "false")
             << ", \"envelope_target_us\": 300, \"envelope_target_met\": " << (tri_us <= 300 ? "true" : "false")
+            << ", \"corridor_envelope_median_cpu_us\": " << corridor_us
+            << ", \"corridor_area_only_median_cpu_us\": " << corridor_area_only_us
+            << ", \"area_only_agrees\": " << (std::abs(area_only_sum - corridor_area) <= 1e-6 * corridor_area ? "true" : "false")
             << ", \"pillar_hall\": {\"segments\": " << hall_plan.segments.size()
             << ", \"envelope_median_cpu_us\": " << hall_us << "}"
             << ", \"path_frames\": " << path.size() << ", \"path_length_m\": " << path.length()
             << ", \"events\": " << cells.events.size() << ", \"cells\": " << cells.cells.size()
             << ", \"critical_lines\": " << cells.critical_lines.size() << ", \"events_wall_s\": " << events_s
-            << ", \"events_cpu_s\": " << events_cpu_s
-            << ", \"events_target_s\": 2, \"events_target_met\": " << (events_s <= 2.0 ? "true" : "false") << "}\n";
+            << ", \"events_cpu_s\": " << events_cpu_s << ", \"events_without_areas_wall_s\": " << events_only_s
+            << ", \"events_without_areas_cpu_s\": " << events_only_cpu_s
+            << ", \"same_events\": " << (same_events(events_only_cells, cells) ? "true" : "false")
+            << ", \"events_target_s\": 2, \"events_target_met_with_areas\": " << (events_s <= 2.0 ? "true" : "false")
+            << ", \"events_target_met_without_areas\": " << (events_only_s <= 2.0 ? "true" : "false") << "}\n";
   return 0;
 }
