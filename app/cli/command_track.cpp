@@ -22,6 +22,7 @@ Command add_track_command(CLI::App& parent) {
     bool json = false;
     bool quiet = false;
     int work_width = 1024;
+    std::vector<double> known_distance;  // frame a, frame b, metres
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = parent.add_subcommand("track", "Recover the camera path (x, y, heading per frame) from the panoramas");
@@ -30,6 +31,9 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--camera-height", options->camera_height,
                   "Camera height above the floor in metres: gives metric scale (else the scale is relative)")
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--known-distance", options->known_distance,
+                  "Metric scale from a distance the author knows: FRAME_A FRAME_B METRES (used without --camera-height)")
+      ->expected(3);
   sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
   sub->add_option("--work-width", options->work_width, "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
@@ -40,6 +44,13 @@ Command add_track_command(CLI::App& parent) {
             EgomotionOptions eo;
             eo.camera_height_m = options->camera_height;
             eo.klt.work_width = options->work_width;
+            if (options->known_distance.size() == 3) {
+              eo.scale_frame_a = static_cast<int>(options->known_distance[0]);
+              eo.scale_frame_b = static_cast<int>(options->known_distance[1]);
+              eo.scale_distance_m = options->known_distance[2];
+              const std::string bad = eo.check();
+              if (!bad.empty()) throw Error("--known-distance: " + bad);
+            }
             const int n = source->frame_count();
             int last_percent = -1;
             std::string last_stage;

@@ -57,6 +57,9 @@ PY
 "$cli" track --capture "$tmp/nothing-here" 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing capture: exit $code"
 grep -q "nothing-here" "$tmp/err.txt" || fail "missing capture message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --known-distance 0 0 2 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "bad --known-distance: exit $code"
+grep -q "known-distance" "$tmp/err.txt" || fail "bad --known-distance message: $(cat "$tmp/err.txt")"
 "$cli" track 2>/dev/null; code=$?
 [[ $code -eq 2 ]] || fail "track without --capture: exit $code"
 echo "ok"
