@@ -30,7 +30,20 @@ Command add_refine_command(CLI::App& parent) {
   return {sub, [o]() {
             Project project = load_project(o->project);
             if (!o->anchors.empty()) project.anchors = read_anchors_file(o->anchors);
-            if (project.anchors.empty())
+            // The capture's GPS track, when there is one and the plan is on Earth, adds weak priors.
+            std::vector<GpsPrior> gps;
+            if (!project.capture.gps_track.empty() && project.geo.valid && !o->preview) {
+              std::vector<double> times;
+              for (const PathFrame& f : project.path.frames)
+                times.push_back((project.capture.first_frame + f.index * project.capture.stride) /
+                                project.capture.frame_rate);
+              GpsMatchOptions match;
+              match.time_offset_s = project.capture.gps_time_offset_s;
+              gps = gps_priors(project.capture.gps_track, times, project.geo, match);
+              for (GpsPrior& g : gps) g.frame = project.path.frames[static_cast<std::size_t>(g.frame)].index;
+              std::cerr << "refine: " << gps.size() << " frames have a GPS fix (weak priors)\n";
+            }
+            if (project.anchors.empty() && gps.size() < 2)
               throw plenopath::Error(o->project + ": no anchors (place some in the studio or pass --anchors FILE)");
             AnchorRefinementReport report;
             if (o->preview) {
@@ -39,15 +52,16 @@ Command add_refine_command(CLI::App& parent) {
               project.path = refine_path_with_anchors(project.path, project.anchors, {}, &report, [](int iteration) {
                 std::cerr << "\rrefine: iteration " << iteration << "   ";
                 return true;
-              });
+              }, gps);
               std::cerr << "\n";
             }
-            project.path.scale_source = "anchors";
+            project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
             const std::string out = o->out.empty() ? o->project : o->out;
             save_project(project, out);
             nlohmann::json residuals = nlohmann::json::array();
             for (const Anchor& a : project.anchors) {
               const PathFrame* f = project.path.find_frame(a.frame);
+              if (!f) continue;
               residuals.push_back({{"index", a.frame}, {"distance_m", (f->position() - a.position).norm()}});
             }
             if (o->json) {
@@ -55,6 +69,7 @@ Command add_refine_command(CLI::App& parent) {
                                           {"anchors", project.anchors.size()},
                                           {"method", o->preview ? "preview" : "refine"},
                                           {"iterations", report.iterations},
+                                          {"gps_fixes", gps.size()},
                                           {"residuals", residuals}}
                                .dump(2)
                         << "\n";

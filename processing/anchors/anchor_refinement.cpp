@@ -208,14 +208,22 @@ void AnchorRefinementOptions::check() const {
 
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                    const RefinementProgress& progress) {
+                                    const RefinementProgress& progress, const std::vector<GpsPrior>& gps) {
   options.check();
   if (path.empty()) throw Error("anchor refinement: the path is empty");
-  if (anchors.empty()) throw Error("anchor refinement: place at least one anchor");
+  // GPS fixes on frames the path has; they align the path like anchors when there are no anchors.
+  std::vector<GpsPrior> fixes;
+  for (const GpsPrior& g : gps)
+    if (path.find_frame(g.frame) && g.sigma_m > 0) fixes.push_back(g);
+  if (anchors.empty() && fixes.size() < 2)
+    throw Error("anchor refinement: place at least one anchor (or give GPS fixes on two frames or more)");
   for (const Anchor& a : anchors) position_of(path, a.frame);  // validates every anchor first
 
   // Start from the similarity alignment, so the solver only has to bend, not to turn the whole path.
-  const CameraPath start = align_path_to_anchors(path, anchors);
+  Anchors alignment = anchors;
+  if (anchors.empty())
+    for (const GpsPrior& g : fixes) alignment.push_back({g.frame, g.plan_xy, std::nullopt});
+  const CameraPath start = align_path_to_anchors(path, alignment);
   std::vector<std::array<double, 3>> poses(start.frames.size());
   for (std::size_t i = 0; i < poses.size(); ++i)
     poses[i] = {start.frames[i].x, start.frames[i].y, start.frames[i].heading};
@@ -224,7 +232,7 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
   // each stretch one unknown more than its anchor pins down (its start heading, scale and bias against two
   // coordinates); one global drift is determined by three anchors and over-determined by more.
   std::set<int> anchored_frames;
-  for (const Anchor& a : anchors) anchored_frames.insert(a.frame);
+  for (const Anchor& a : alignment) anchored_frames.insert(a.frame);
   std::array<double, 2> drift = {1.0, 0.0};
 
   ceres::Problem problem;
@@ -249,8 +257,11 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
     if (anchor.heading)
       problem.AddResidualBlock(HeadingPrior::Create(*anchor.heading, options.anchor_heading_sigma_rad), nullptr, pose);
   }
+  for (const GpsPrior& g : fixes)
+    problem.AddResidualBlock(AnchorPrior::Create(g.plan_xy, g.sigma_m), new ceres::CauchyLoss(1.0),
+                             poses[position_of(start, g.frame)].data());
   // A single anchor without heading leaves the rotation about it free: hold that frame's heading.
-  if (anchors.size() == 1 && !anchors[0].heading)
+  if (anchors.size() == 1 && !anchors[0].heading && fixes.size() < 2)
     problem.AddResidualBlock(HeadingPrior::Create(poses[position_of(start, anchors[0].frame)][2], 1e-3), nullptr,
                              poses[position_of(start, anchors[0].frame)].data());
 

@@ -14,6 +14,7 @@
 #include "model/anchors.h"
 #include "model/camera_path.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "processing/gps_track.h"
 
 namespace plenopath {
 
@@ -57,11 +58,14 @@ struct AnchorRefinementReport {
 // comes back unchanged, report->cancelled set).
 using RefinementProgress = std::function<bool(int iteration)>;
 
-// Needs at least one anchor (two or more to fix rotation and scale). Frames keep their flags; the refined
-// ones get no new flag. Throws Error on unusable input (empty path, anchors off the path).
+// Needs at least one anchor (two or more to fix rotation and scale), or GPS priors on at least two frames.
+// GPS priors (processing/gps_track.h) are weak position priors with a robust loss, so a few bad fixes do
+// not drag the path. Frames keep their flags. Throws Error on unusable input (empty path, anchors off
+// the path).
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options = {},
                                     AnchorRefinementReport* report = nullptr,
-                                    const RefinementProgress& progress = {});
+                                    const RefinementProgress& progress = {},
+                                    const std::vector<GpsPrior>& gps = {});
 
 }  // namespace plenopath

@@ -38,4 +38,27 @@ echo '[{"index":0,"x":"here"}]' > "$tmp/bad.json"
 "$cli" refine --project "$tmp/none.plenopath" --anchors "$tmp/bad.json" 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "bad anchors file: exit $code"
 grep -q "bad.json: /0/x" "$tmp/err.txt" || fail "bad anchors file message: $(cat "$tmp/err.txt")"
+# GPS only: the capture's track (two fixes, 1/15 s apart, on the plan line x = 2 from y = 1 to y = 3 through a
+# geo-anchor at 48 N 2 E; 1 m north = 1/111190.3 deg, 1 m east = 1/74625.2 deg there) and no anchors.
+/usr/bin/python3 - "$data/projects/minimal.plenopath" "$tmp/gps.plenopath" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+n, e = 1 / 111190.3, 1 / 74625.2
+p["capture"] = {"kind": "none", "frame_rate": 30.0, "gps_track": [
+    {"t": 0.0, "lat": 48 + 1 * n, "lon": 2 + 2 * e, "alt": 0},
+    {"t": 2 / 30, "lat": 48 + 3 * n, "lon": 2 + 2 * e, "alt": 0}]}
+p["geo_anchor"] = {"valid": True, "latitude_deg": 48.0, "longitude_deg": 2.0, "altitude_m": 0,
+                   "plan_rotation_deg": 0, "scale": 1, "plan_origin": [0, 0]}
+json.dump(p, open(sys.argv[2], "w"))
+PY
+"$cli" refine --project "$tmp/gps.plenopath" --json > "$tmp/gps.json" 2>/dev/null || fail "GPS refine exit $?"
+/usr/bin/python3 - "$tmp/gps.plenopath" "$tmp/gps.json" <<'PY' || fail "GPS-refined positions"
+import json, sys
+p = json.load(open(sys.argv[1]))
+f = {x["index"]: x for x in p["path"]["frames"]}
+for i, y in ((0, 1), (1, 2), (2, 3)):
+    assert abs(f[i]["x"] - 2) < 0.05 and abs(f[i]["y"] - y) < 0.05, f[i]
+assert json.load(open(sys.argv[2]))["gps_fixes"] == 3
+assert p["path"]["scale_source"] == "gps"
+PY
 echo ok

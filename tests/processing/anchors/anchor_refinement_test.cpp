@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <random>
 
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
@@ -152,6 +153,42 @@ TEST(AnchorRefinement, BadInputGetsClearErrors) {
   const Anchors same = {{0, {2, 2}, std::nullopt}, {1, {2, 2}, std::nullopt}};
   const CameraPath p = preview_path_with_anchors(still, same);
   EXPECT_TRUE(std::isfinite(p.frames[1].x));
+}
+
+}  // namespace
+}  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// GPS fixes every 20 frames with 1.5 m of noise and two gross outliers (30 m off) pull a drifted walk back
+// onto the plan without any anchor; the robust loss keeps the outliers from dragging it.
+TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
+  const CameraPath truth = truth_walk(900);
+  const CameraPath drift = drifted(truth, 0.02 * M_PI / 180.0, 1.05);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.5);
+  std::vector<GpsPrior> gps;
+  for (std::size_t i = 0; i < truth.frames.size(); i += 20)
+    gps.push_back({truth.frames[i].index, truth.frames[i].position() + Eigen::Vector2d(noise(rng), noise(rng)), 1.5});
+  const CameraPath clean = refine_path_with_anchors(drift, {}, {}, nullptr, {}, gps);
+  gps[5].plan_xy += Eigen::Vector2d(30, 0);
+  gps[20].plan_xy += Eigen::Vector2d(0, -30);
+  const CameraPath refined = refine_path_with_anchors(drift, {}, {}, nullptr, {}, gps);
+  auto rms = [&](const CameraPath& p) {
+    double sum = 0;
+    for (std::size_t i = 0; i < truth.frames.size(); ++i)
+      sum += (p.frames[i].position() - truth.frames[i].position()).squaredNorm();
+    return std::sqrt(sum / truth.frames.size());
+  };
+  const double before = rms(drift), after = rms(refined), without_outliers = rms(clean);
+  std::printf("GPS priors only (1.5 m noise, every 20th frame): unaligned RMS error %.2f m -> %.2f m "
+              "(%.2f m without the two 30 m outliers)\n", before, after, without_outliers);
+  EXPECT_LT(after, before / 2);
+  EXPECT_LT(after, 1.5);
+  EXPECT_LT(std::abs(after - without_outliers), 0.3);  // the robust loss ignores the outliers
+  // One fix is not enough to place a path.
+  EXPECT_THROW(refine_path_with_anchors(drift, {}, {}, nullptr, {}, {gps[0]}), Error);
 }
 
 }  // namespace
