@@ -2,6 +2,8 @@
 //  [--compute-visibility] [--resample] [--autosave-seconds S]`: the editor.
 // --screenshot opens the project, waits until the panorama shows its frame, saves an image of the whole
 // window and exits (app/take-screenshot.sh uses it for the README).
+#include <malloc.h>
+
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -60,6 +62,9 @@ int take_screenshot(plenopath::studio::MainWindow& window, const QString& file) 
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Decoded frames are megabytes each: give them back to the system when the frame cache drops them, so
+  // scrubbing a long capture stays within the cache's memory bound (bench_frame_cache measures this).
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   // Must precede QApplication so that VTK's OpenGL widgets get a compatible context.
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);

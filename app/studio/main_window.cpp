@@ -74,6 +74,10 @@ MainWindow::MainWindow(QWidget* parent)
   show_error = [this](const QString& title, const QString& message) {
     QMessageBox::critical(this, title, message);
   };
+  ask_export_target = [this](const QString& suggested) {
+    return QFileDialog::getSaveFileName(this, tr("Export tour — a folder name, or a file ending in .zip"), suggested,
+                                        tr("Tour folder (*);;Tour archive (*.zip)"));
+  };
 
   map_ = new widgets::MapView(*document_, this);
   panorama_ = new widgets::PanoramaView(*document_, *frames_, this);
@@ -186,6 +190,9 @@ void MainWindow::create_actions() {
   new ImportCaptureReaction(import_capture, *this);
   QAction* import_path = file->addAction(tr("Import camera &path…"));
   new ImportPathReaction(import_path, *this);
+  QAction* export_tour = file->addAction(tr("&Export tour…"));
+  export_tour->setShortcut(tr("Ctrl+Shift+E"));
+  new ExportTourReaction(export_tour, *this);
   file->addSeparator();
   QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
   quit->setShortcut(QKeySequence::Quit);
@@ -212,6 +219,9 @@ void MainWindow::create_actions() {
   next->setShortcut(tr("Ctrl+Right"));
   QAction* previous = view->addAction(tr("&Previous frame"), this, [this] { document_->step(-1); });
   previous->setShortcut(tr("Ctrl+Left"));
+  QAction* walk = view->addAction(tr("&Walk mode"));
+  walk->setShortcut(tr("F5"));
+  new WalkModeReaction(walk, *this);
   view->addSeparator();
   for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
 

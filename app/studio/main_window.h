@@ -52,6 +52,7 @@ class MainWindow : public QMainWindow {
   Autosave& autosave() const { return *autosave_; }
   widgets::MapView* map_view() const { return map_; }
   widgets::PanoramaView* panorama_view() const { return panorama_; }
+  widgets::FrameProvider& frame_provider() const { return *frames_; }
   widgets::SamplingPanel* sampling_panel() const { return sampling_; }
   widgets::TimelinePanel* timeline_panel() const { return timeline_; }
   EnvelopeService* envelopes() const { return envelopes_; }
@@ -60,6 +61,8 @@ class MainWindow : public QMainWindow {
   // Questions the window asks; tests replace them with fixed answers.
   std::function<bool(const QString& autosave_file)> ask_recovery;
   std::function<QMessageBox::StandardButton()> ask_save_changes;
+  // Where to export a tour (a folder, or a file ending in .zip); empty = cancelled.
+  std::function<QString(const QString& suggested)> ask_export_target;
   // Where errors go (default: a message box).
   std::function<void(const QString& title, const QString& message)> show_error;
 

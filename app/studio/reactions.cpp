@@ -1,5 +1,12 @@
 #include "app/studio/reactions.h"
 
+#include <QDir>
+#include <algorithm>
+
+#include "model/error.h"
+#include "processing/export/tour_export.h"
+#include "widgets/walk_view.h"
+
 #include <QAction>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -80,6 +87,59 @@ void ComputeVisibilityReaction::update_enabled() {
 
 void ComputeVisibilityReaction::on_triggered() {
   window_.tasks().start(QObject::tr("Compute visibility"), compute_visibility_task());
+}
+
+ExportTourReaction::ExportTourReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void ExportTourReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  action()->setEnabled(!p.path.empty() && !p.keyframes.empty());
+}
+
+void ExportTourReaction::on_triggered() {
+  const QString suggested = window_.document().file_name().isEmpty()
+                                ? QStringLiteral("tour")
+                                : QFileInfo(window_.document().file_name()).completeBaseName() + "_tour";
+  const QString output =
+      window_.ask_export_target(QFileInfo(window_.document().file_name()).absoluteDir().filePath(suggested));
+  if (output.isEmpty()) return;
+  const std::string out = output.toStdString();
+  window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, widgets::TaskProgress& progress) {
+    const TourExportOptions options = TourExportOptions::from_project(snapshot, out);
+    const TourExportReport report = export_tour(snapshot, options, [&progress](double f, const std::string& stage) {
+      progress.report(f, stage);
+      return !progress.cancelled();
+    });
+    progress.report(1.0, "exported " + std::to_string(report.keyframes) + " keyframes, " +
+                             std::to_string(report.package_bytes / 1024) + " KiB");
+    return widgets::TaskResult{std::move(snapshot), 0};  // an export changes nothing in the document
+  });
+}
+
+WalkModeReaction::WalkModeReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void WalkModeReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  action()->setEnabled(!p.path.empty() && !p.keyframes.empty());
+}
+
+void WalkModeReaction::on_triggered() {
+  try {
+    auto* walk = new widgets::WalkView(window_.document(), window_.frame_provider());
+    walk->setAttribute(Qt::WA_DeleteOnClose);
+    walk->setWindowFlag(Qt::Window);
+    walk->resize(std::max(800, window_.width() * 3 / 4), std::max(500, window_.height() * 3 / 4));
+    walk->show();
+    walk->setFocus();
+  } catch (const Error& e) {
+    window_.show_error(QObject::tr("Walk mode"), QString::fromStdString(e.what()));
+  }
 }
 
 TrackPathReaction::TrackPathReaction(QAction* action, MainWindow& window) : Reaction(action, window) {

@@ -73,6 +73,26 @@ class ComputeVisibilityReaction : public Reaction {
   void update_enabled();
 };
 
+// File > Export tour: the packaged walkthrough (folder or .zip) built on a worker with progress and Cancel.
+class ExportTourReaction : public Reaction {
+ public:
+  ExportTourReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
+// View > Walk mode: the tour's experience in a window of its own (widgets/walk_view.h).
+class WalkModeReaction : public Reaction {
+ public:
+  WalkModeReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 class TrackPathReaction : public Reaction {
  public:
   TrackPathReaction(QAction* action, MainWindow& window);

@@ -1,6 +1,10 @@
 // Walk mode in the studio: it shows the keyframe images (not blank), a walk key moves to the next keyframe
 // and the picture changes, and a click on the map window walks there.
+#include <QApplication>
 #include <QElapsedTimer>
+#include <QFile>
+#include <QMessageBox>
+#include <QUndoStack>
 #include <QTest>
 #include <QThread>
 #include <gtest/gtest.h>
@@ -83,6 +87,66 @@ TEST(WalkView, RefusesAProjectWithoutKeyframes) {
   document.reset(project, QString());
   widgets::FrameProvider frames(document);
   EXPECT_THROW(widgets::WalkView(document, frames), Error);
+}
+
+}  // namespace
+}  // namespace plenopath
+
+#include <QAction>
+#include <QDir>
+
+#include "app/studio/main_window.h"
+#include "widgets/task_runner.h"
+
+namespace plenopath {
+namespace {
+
+QAction* action_named(QWidget& window, const QString& text) {
+  for (QAction* a : window.findChildren<QAction*>())
+    if (a->text().remove('&').startsWith(text)) return a;
+  return nullptr;
+}
+
+// From the studio's menus: File > Export tour writes a package (on the task runner, no undo step), and
+// View > Walk mode opens the walk window.
+TEST(StudioTour, ExportAndWalkFromTheMenus) {
+  studio::MainWindow window;
+  window.ask_recovery = [](const QString&) { return false; };
+  window.ask_save_changes = [] { return QMessageBox::Discard; };
+  QStringList errors;
+  window.show_error = [&](const QString& title, const QString& message) { errors << title + ": " + message; };
+  const QString out = QDir::temp().filePath("plenopath_studio_export_tour");
+  QDir(out).removeRecursively();
+  window.ask_export_target = [&](const QString&) { return out; };
+  Project project = test::test_project("walk").project;
+  project.keyframes.indices = {0, 15, 29};
+  window.document().reset(project, test::test_project("walk").project_file);
+  window.show();
+
+  QAction* export_tour = action_named(window, "Export tour");
+  ASSERT_NE(export_tour, nullptr);
+  ASSERT_TRUE(export_tour->isEnabled());
+  const int undo_steps = window.document().undo_stack()->count();
+  export_tour->trigger();
+  ASSERT_TRUE(wait_for([&] { return !window.tasks().is_running() && QFile::exists(out + "/tour.json"); }))
+      << errors.join("\n").toStdString();
+  EXPECT_TRUE(QFile::exists(out + "/index.html"));
+  EXPECT_TRUE(QFile::exists(out + "/images/k000015_full.jpg"));
+  EXPECT_EQ(window.document().undo_stack()->count(), undo_steps);  // nothing to undo: the document is unchanged
+  EXPECT_TRUE(errors.isEmpty()) << errors.join("\n").toStdString();
+
+  QAction* walk = action_named(window, "Walk mode");
+  ASSERT_NE(walk, nullptr);
+  walk->trigger();
+  widgets::WalkView* view = nullptr;
+  ASSERT_TRUE(wait_for([&] {
+    for (QWidget* w : QApplication::topLevelWidgets())
+      if (auto* v = qobject_cast<widgets::WalkView*>(w); v && v->isVisible()) view = v;
+    return view != nullptr;
+  }));
+  EXPECT_EQ(view->navigator().keyframes().size(), 3u);
+  view->close();
+  QDir(out).removeRecursively();
 }
 
 }  // namespace
