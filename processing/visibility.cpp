@@ -77,7 +77,8 @@ Eigen::Vector2d point_at(const std::vector<Eigen::Vector2d>& points, const std::
 
 }  // namespace
 
-VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const {
+VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
+                                                  const std::function<void(double)>& progress) const {
   VisibilityCells result;
   if (path.frames.empty()) return result;
   std::vector<Eigen::Vector2d> points;
@@ -94,7 +95,10 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     path_frame.push_back(static_cast<int>(i));
   }
   const auto timing_start = std::chrono::steady_clock::now();
-  const std::vector<CriticalLine> windows = vertex_windows();
+  // Progress: the windows take about 60 % of the time, the cells' envelopes the rest.
+  const std::vector<CriticalLine> windows =
+      vertex_windows(progress ? std::function<void(double)>([&](double f) { progress(0.6 * f); })
+                              : std::function<void(double)>());
   const bool timing = std::getenv("PLENOPATH_VISIBILITY_TIMING") != nullptr;
   auto lap = [&](const char* what) {
     if (timing)
@@ -159,7 +163,10 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path) const 
     std::mutex failure_mutex;
     auto work = [&]() {
       try {
-        for (std::size_t i = next++; i < queries_s.size(); i = next++) query_area[i] = area_at(queries_s[i]);
+        for (std::size_t i = next++; i < queries_s.size(); i = next++) {
+          if (progress) progress(0.6 + 0.4 * static_cast<double>(i) / queries_s.size());
+          query_area[i] = area_at(queries_s[i]);
+        }
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();

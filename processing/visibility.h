@@ -15,6 +15,7 @@
 // from several threads at once: each calling thread gets its own CGAL visibility object (CGAL's
 // Triangular_expansion_visibility_2 keeps mutable state and must never be shared between threads).
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -96,7 +97,10 @@ class VisibilityIndex {
   // of the first and last frame inside it, or both the frame nearest its middle if no frame falls inside.
   // The envelope is computed once per cell (its middle; also once per event if area_mean_simpson), never
   // per frame; those queries run on `threads` threads.
-  VisibilityCells cells_along_path(const CameraPath& path) const;
+  // `progress` (optional) is called with the fraction done, from worker threads too; it may throw to cancel
+  // (the exception reaches the caller once the workers have stopped, within a few envelope queries).
+  VisibilityCells cells_along_path(const CameraPath& path,
+                                   const std::function<void(double fraction)>& progress = {}) const;
 
   // The segments CGAL sees after snapping and thickening (for display and for independent test oracles).
   std::vector<PlanSegment> effective_segments() const;
@@ -105,7 +109,7 @@ class VisibilityIndex {
 
  private:
   // Windows of every plan vertex's visibility polygon: the critical lines the events come from.
-  std::vector<CriticalLine> vertex_windows() const;
+  std::vector<CriticalLine> vertex_windows(const std::function<void(double fraction)>& progress = {}) const;
   const VisibilityOptions& options() const;
 
   struct Impl;

@@ -73,7 +73,11 @@ widgets::TaskFunction compute_visibility_task() {
     const VisibilityIndex index(project.plan);
     progress.throw_if_cancelled();
     progress.report(0.3, "events and cells along " + std::to_string(project.path.size()) + " frames");
-    project.visibility = index.cells_along_path(project.path);
+    // Cancel reaches inside: the callback throws TaskCancelled from the visibility workers.
+    project.visibility = index.cells_along_path(project.path, [&progress](double f) {
+      progress.throw_if_cancelled();
+      progress.report(0.3 + 0.7 * f, "visibility events and cells");
+    });
     progress.report(1.0);
     return TaskResult{std::move(project), widgets::kVisibilityChanged};
   };
