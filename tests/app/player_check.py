@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Opens an exported tour in headless Chromium and checks it as a viewer would.
 
-usage: player_check.py PACKAGE_DIR SCREENSHOT_PREFIX [--xss-title TITLE]
+usage: player_check.py PACKAGE_DIR SCREENSHOT_PREFIX [--xss-title TITLE] [--no-hotspots]
 
 Talks to Chromium over --remote-debugging-pipe (DevTools protocol, NUL-separated JSON on fds 3 and 4), so it
 needs nothing but Debian's chromium and python3. Checks: the panorama canvas renders non-blank; a walk key
@@ -115,6 +115,24 @@ PIXELS = """(() => {
   return {mean, std: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), hash, w, h};
 })()"""
 
+def check_hotspot_click(b, spot):
+    fired_before = b.evaluate("window.plenopathPlayer.events.length")
+    b.click(spot['x'], spot['y'])
+    time.sleep(0.3)
+    via = 'canvas'
+    if b.evaluate("window.plenopathPlayer.events.length") == fired_before:
+        b.click(spot['lx'], spot['ly'])
+        time.sleep(0.3)
+        via = 'label'
+    events = b.evaluate("window.plenopathPlayer.events")
+    if len(events) <= fired_before:
+        fail('clicking the hotspot fired nothing')
+    print('hotspot fired via %s: %s' % (via, json.dumps(events[-1])))
+    if events[-1]['action'] == 'show_text' and b.evaluate("document.getElementById('panel').hidden"):
+        fail('show_text did not open the panel')
+    b.key('Escape', 'Escape', 27)
+
+
 def main():
     if len(sys.argv) < 3:
         print(__doc__)
@@ -155,28 +173,15 @@ def main():
                 fail('markup in a hotspot title was executed')
 
         # Click on a visible hotspot: the quad itself on the canvas (ray test), else its label.
-        spot = b.evaluate("""(() => {
+        spot = None if '--no-hotspots' in sys.argv else b.evaluate("""(() => {
           const l = Array.from(document.querySelectorAll('.hotspot-label')).find(e => !e.hidden);
           if (!l) return null; const r = l.getBoundingClientRect();
           return {x: r.left + r.width / 2, y: r.top + r.height / 2 + 40, lx: r.left + r.width / 2, ly: r.top + r.height / 2};
         })()""")
-        if spot is None:
+        if spot is None and '--no-hotspots' not in sys.argv:
             fail('no hotspot is visible from the start view')
-        fired_before = b.evaluate("window.plenopathPlayer.events.length")
-        b.click(spot['x'], spot['y'])
-        time.sleep(0.3)
-        via = 'canvas'
-        if b.evaluate("window.plenopathPlayer.events.length") == fired_before:
-            b.click(spot['lx'], spot['ly'])
-            time.sleep(0.3)
-            via = 'label'
-        events = b.evaluate("window.plenopathPlayer.events")
-        if len(events) <= fired_before:
-            fail('clicking the hotspot fired nothing')
-        print('hotspot fired via %s: %s' % (via, json.dumps(events[-1])))
-        if events[-1]['action'] == 'show_text' and b.evaluate("document.getElementById('panel').hidden"):
-            fail('show_text did not open the panel')
-        b.key('Escape', 'Escape', 27)
+        if spot is not None:
+            check_hotspot_click(b, spot)
 
         # Walk forward: another keyframe, another picture.
         b.evaluate("document.getElementById('view').focus()")
