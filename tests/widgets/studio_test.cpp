@@ -32,6 +32,7 @@
 #include "rig/equirect_sampling.h"
 #include "rig/spherical.h"
 #include "tests/widgets/test_project.h"
+#include "tests/widgets/wait_until.h"
 #include "widgets/document_commands.h"
 #include "widgets/map_view.h"
 #include "widgets/panorama_view.h"
@@ -46,17 +47,7 @@ namespace {
 using studio::MainWindow;
 using test::test_project;
 
-template <typename Done>
-bool wait_until(Done done, int timeout_ms = 20000) {
-  QElapsedTimer timer;
-  timer.start();
-  while (!done()) {
-    if (timer.elapsed() > timeout_ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(2);
-  }
-  return true;
-}
+using test::wait_until;
 
 // A main window that never blocks on a question.
 struct Studio {

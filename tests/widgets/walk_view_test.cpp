@@ -11,6 +11,7 @@
 
 #include "model/error.h"
 #include "tests/widgets/test_project.h"
+#include "tests/widgets/wait_until.h"
 #include "widgets/frame_provider.h"
 #include "widgets/project_document.h"
 #include "widgets/walk_view.h"
@@ -18,17 +19,6 @@
 namespace plenopath {
 namespace {
 
-template <typename Done>
-bool wait_for(Done done, int timeout_ms = 20000) {
-  QElapsedTimer timer;
-  timer.start();
-  while (!done()) {
-    if (timer.elapsed() > timeout_ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(2);
-  }
-  return true;
-}
 
 // Mean and spread of a grabbed view's grey levels, outside the map window and status line.
 std::pair<double, double> grey_statistics(const QImage& image) {
@@ -57,25 +47,36 @@ TEST(WalkView, ShowsKeyframesAndWalks) {
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&view));
 
   QImage first;
-  ASSERT_TRUE(wait_for([&] {
+  ASSERT_TRUE(test::wait_until([&] {
     first = view.grabFramebuffer();
     return grey_statistics(first).second > 10.0;
   })) << "the walk view stayed blank";
   EXPECT_EQ(view.navigator().current_keyframe(), 0);
 
   QTest::keyClick(&view, Qt::Key_W);
-  ASSERT_TRUE(wait_for([&] { return view.navigator().current_keyframe() == 1 && !view.navigator().moving(); }));
+  ASSERT_TRUE(test::wait_until([&] { return view.navigator().current_keyframe() == 1 && !view.navigator().moving(); }));
   QImage walked;
-  ASSERT_TRUE(wait_for([&] {
+  ASSERT_TRUE(test::wait_until([&] {
     walked = view.grabFramebuffer();
     return view.navigator().fade() >= 1.0 && grey_statistics(walked).second > 10.0 && walked != first;
   })) << "the picture did not change after walking";
   walked.save(QString(PLENOPATH_BINARY_DIR) + "/walk_view.png");  // to look at
 
+  // The frame rate while redrawing continuously (printed for the record; speed is not asserted in tests).
+  int swaps = 0;
+  QObject::connect(&view, &QOpenGLWidget::frameSwapped, [&] { ++swaps; });
+  QElapsedTimer clock;
+  clock.start();
+  while (clock.elapsed() < 1500) {
+    view.update();
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  }
+  std::printf("walk view: %.0f frames/s at %dx%d\n", swaps * 1000.0 / clock.elapsed(), view.width(), view.height());
+
   // A click on the map window where the last keyframe is drawn walks there.
   const QPointF last = view.map_point(project.path.frames.back().position());
   QTest::mouseClick(&view, Qt::LeftButton, Qt::NoModifier, last.toPoint());
-  ASSERT_TRUE(wait_for([&] { return !view.navigator().moving(); }));
+  ASSERT_TRUE(test::wait_until([&] { return !view.navigator().moving(); }));
   EXPECT_EQ(view.navigator().current_keyframe(), 3);
   EXPECT_NEAR(view.navigator().s(), view.navigator().path_length(), 0.2);
 }
@@ -128,7 +129,7 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   ASSERT_TRUE(export_tour->isEnabled());
   const int undo_steps = window.document().undo_stack()->count();
   export_tour->trigger();
-  ASSERT_TRUE(wait_for([&] { return !window.tasks().is_running() && QFile::exists(out + "/tour.json"); }))
+  ASSERT_TRUE(test::wait_until([&] { return !window.tasks().is_running() && QFile::exists(out + "/tour.json"); }))
       << errors.join("\n").toStdString();
   EXPECT_TRUE(QFile::exists(out + "/index.html"));
   EXPECT_TRUE(QFile::exists(out + "/images/k000015_full.jpg"));
@@ -139,7 +140,7 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   ASSERT_NE(walk, nullptr);
   walk->trigger();
   widgets::WalkView* view = nullptr;
-  ASSERT_TRUE(wait_for([&] {
+  ASSERT_TRUE(test::wait_until([&] {
     for (QWidget* w : QApplication::topLevelWidgets())
       if (auto* v = qobject_cast<widgets::WalkView*>(w); v && v->isVisible()) view = v;
     return view != nullptr;
