@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `make run`: renders the office sample's capture once (cached under resources/samples/office/capture/,
-# git-ignored), then opens the studio on the sample project when there is a display, or prints a headless
-# summary of the project and its capture when there is none.
+# git-ignored), then opens the studio on the sample project when there is a display, or, when there is
+# none, runs the pipeline headless on it: summary, path recovery scored against ground truth, visibility.
 set -euo pipefail
 build_dir=${1:-build}
 cli="$build_dir/app/plenopath"
@@ -40,5 +40,18 @@ echo
 "$cli" info "$project"
 echo
 "$cli" capture-info "$capture/frames" --depth "$capture/depth" || true
+
+# The pipeline on the sample, headless: recover the path from the panoramas alone, score it against the
+# renderer's ground truth, and cut the walk into visibility cells.
+out="$build_dir/sample-run"
+mkdir -p "$out"
 echo
-echo "No display: this was the headless summary. On a desktop, \`make run\` opens the studio on $project."
+echo "Tracking the camera path from the panoramas alone…"
+if "$cli" track --capture "$capture/frames" --camera-height 1.6 --out "$out/tracked_path.json" --quiet; then
+  "$cli" eval-path --estimate "$out/tracked_path.json" --truth "$capture/groundtruth.json"
+fi
+echo
+echo "Visibility events and cells along the walk:"
+"$cli" visibility --plan "$sample_dir/office.dxf" --path "$sample_dir/office_path.json" | tail -n 5 || true
+echo
+echo "No display: this was the headless run. On a desktop, \`make run\` opens the studio on $project."

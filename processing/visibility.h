@@ -7,9 +7,8 @@
 // overlaps resolved exactly); dangling walls (ends that touch nothing) are thickened into thin rectangles so
 // every wall bounds a face. Faces are classified by nesting: the unbounded face is outside; the faces of
 // a wall component that sits in the outside are free (rooms); the faces of a component nested inside free
-// space are obstacles (pillars); and so on alternating.
-// Limitation: walls drawn as two parallel lines forming a closed ring that touches nothing else make the
-// ring's body look free and the rooms inside look like obstacles.
+// space are obstacles (pillars); and so on alternating. A "room" that is only a thin ring (mean width under
+// 60 cm) around other walls is the body of a wall drawn with two lines: what lies inside it is free again.
 //
 // Thread-safety: a VisibilityIndex is immutable after construction and its const methods may be called
 // from several threads at once: each calling thread gets its own CGAL visibility object (CGAL's

@@ -172,9 +172,46 @@ void VisibilityIndex::Impl::build(const FloorPlan& plan) {
 }
 
 // Nesting: the unbounded face is outside; the faces of a wall component lying in an outside face are free
-// (rooms), those of a component lying in a free face are obstacles (pillars), alternating. Faces whose
-// corners all lie within the thickness of a thickened dangling wall are that wall's inside.
+// (rooms), those of a component lying in a free face are obstacles (pillars), alternating. A "room" that is
+// only a thin ring around other walls is the body of a double-line wall: what lies inside it is free again.
+// Faces whose corners all lie within the thickness of a thickened dangling wall are that wall's inside.
+namespace {
+
+// Signed area and length of one boundary cycle of a face.
+template <typename Circulator>
+void cycle_area_and_length(Circulator first, double* area, double* length) {
+  double a = 0, l = 0;
+  auto curr = first;
+  do {
+    const Eigen::Vector2d p = to_eigen(curr->source()->point()), q = to_eigen(curr->target()->point());
+    a += p.x() * q.y() - q.x() * p.y();
+    l += (q - p).norm();
+  } while (++curr != first);
+  *area = 0.5 * a;
+  *length = l;
+}
+
+// A face with holes whose mean width (2 area / perimeter) is under a wall's thickness is the body of a
+// wall drawn with two lines (an outer wall whose inner line is a loop of its own), not a room.
+bool is_wall_body(Arrangement::Face_const_handle f, double max_wall_thickness) {
+  if (!f->has_outer_ccb() || f->inner_ccbs_begin() == f->inner_ccbs_end()) return false;
+  double area = 0, perimeter = 0, a = 0, l = 0;
+  cycle_area_and_length(f->outer_ccb(), &a, &l);
+  area += std::abs(a);
+  perimeter += l;
+  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole) {
+    cycle_area_and_length(*hole, &a, &l);
+    area -= std::abs(a);
+    perimeter += l;
+  }
+  return perimeter > 0 && 2.0 * area / perimeter < max_wall_thickness;
+}
+
+}  // namespace
+
 void VisibilityIndex::Impl::classify_faces() {
+  // Walls thicker than this are not drawn as two lines (60 cm: thick masonry).
+  constexpr double kMaxWallThickness = 0.6;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) f->set_data(kUnset);
   std::vector<Arrangement::Face_handle> queue;
   auto top = arr.unbounded_face();
@@ -182,6 +219,8 @@ void VisibilityIndex::Impl::classify_faces() {
   queue.push_back(top);
   for (std::size_t qi = 0; qi < queue.size(); ++qi) {
     auto g = queue[qi];
+    if (g->data() == kFree && is_wall_body(g, kMaxWallThickness)) g->set_data(kWallInterior);
+    // Inside a room: pillars; inside the outside or inside a wall's body: rooms.
     const int inner_kind = (g->data() == kFree) ? kObstacle : kFree;
     for (auto hole = g->inner_ccbs_begin(); hole != g->inner_ccbs_end(); ++hole) {
       // Flood the component behind this hole without crossing back into g.
