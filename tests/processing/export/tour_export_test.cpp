@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <unistd.h>
 
 #include "model/error.h"
 #include "model/json_reader.h"
@@ -21,8 +22,9 @@ namespace plenopath {
 namespace {
 namespace fs = std::filesystem;
 
+// One folder per process: ctest runs each test of this suite as its own process, in parallel.
 fs::path test_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("plenopath_export_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("plenopath_export_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
