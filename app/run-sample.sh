@@ -52,6 +52,6 @@ if "$cli" track --capture "$capture/frames" --camera-height 1.6 --out "$out/trac
 fi
 echo
 echo "Visibility events and cells along the walk:"
-"$cli" visibility --plan "$sample_dir/office.dxf" --path "$sample_dir/office_path.json" | tail -n 5 || true
+"$cli" visibility --plan "$sample_dir/office.dxf" --path "$sample_dir/office_path.json" | head -n 3 || true
 echo
 echo "No display: this was the headless run. On a desktop, \`make run\` opens the studio on $project."
