@@ -15,20 +15,13 @@
 #include "model/camera_path.h"
 #include "rig/spherical.h"
 #include "widgets/frame_provider.h"
+#include "widgets/fullscreen_triangle.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
 
 namespace {
 
-const char* kVertexShader = R"(#version 150
-in vec2 corner;
-out vec2 ndc;
-void main() {
-  ndc = corner;
-  gl_Position = vec4(corner, 0.0, 1.0);
-}
-)";
 
 // Perspective mode: the ray through a screen pixel, in the camera frame (+x forward, +y left, +z up), is
 // forward + s*right + t*up; its azimuth a = atan2(-y, x) (grows to the right) and elevation e map to the
@@ -143,7 +136,7 @@ void PanoramaView::initializeGL() {
     doneCurrent();
   });
   program_ = std::make_unique<QOpenGLShaderProgram>();
-  program_->addShaderFromSourceCode(QOpenGLShader::Vertex, kVertexShader);
+  program_->addShaderFromSourceCode(QOpenGLShader::Vertex, kFullscreenTriangleVertexShader);
   program_->addShaderFromSourceCode(QOpenGLShader::Fragment, kFragmentShader);
   program_->bindAttributeLocation("corner", 0);
   if (!program_->link()) message_ = tr("Panorama shader failed: %1").arg(program_->log());

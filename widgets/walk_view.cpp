@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "widgets/frame_provider.h"
+#include "widgets/fullscreen_triangle.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -19,14 +20,6 @@ namespace {
 
 constexpr int kTextureCache = 8;
 
-const char* kVertexShader = R"(#version 150
-in vec2 corner;
-out vec2 ndc;
-void main() {
-  ndc = corner;
-  gl_Position = vec4(corner, 0.0, 1.0);
-}
-)";
 
 // ray maps (ndc.x, ndc.y, 1) to a world direction (plan frame, z up). A keyframe with heading h sees world
 // angle phi at azimuth h - phi (rig/spherical.h), i.e. at texture u = (h - phi + pi) / 2pi.
@@ -145,7 +138,7 @@ void WalkView::initializeGL() {
     doneCurrent();
   });
   program_ = std::make_unique<QOpenGLShaderProgram>();
-  program_->addShaderFromSourceCode(QOpenGLShader::Vertex, kVertexShader);
+  program_->addShaderFromSourceCode(QOpenGLShader::Vertex, kFullscreenTriangleVertexShader);
   program_->addShaderFromSourceCode(QOpenGLShader::Fragment, kFragmentShader);
   program_->bindAttributeLocation("corner", 0);
   program_->link();
