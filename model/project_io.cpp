@@ -5,6 +5,7 @@
 
 #include "model/anchors_io.h"
 #include "model/atomic_file.h"
+#include "model/hotspot_io.h"
 #include "model/error.h"
 #include "model/json_reader.h"
 #include "model/path_io.h"
@@ -15,15 +16,10 @@ namespace {
 using nlohmann::json;
 
 json vec2(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
-json vec3(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 Eigen::Vector2d read_vec2(const JsonReader& r) {
   if (r.size() != 2) r.fail("expected [x, y]");
   return {r.at(0).number(), r.at(1).number()};
-}
-Eigen::Vector3d read_vec3(const JsonReader& r) {
-  if (r.size() != 3) r.fail("expected [x, y, z]");
-  return {r.at(0).number(), r.at(1).number(), r.at(2).number()};
 }
 
 // ---- floor plan
@@ -209,14 +205,9 @@ Keyframes keyframes_from_json(const JsonReader& r) {
 json hotspots_to_json(const std::vector<Hotspot>& hotspots, const std::string& base) {
   json out = json::array();
   for (const auto& h : hotspots) {
-    json image = json::array(), world = json::array();
-    for (const auto& c : h.image_corners) image.push_back({degrees(c.x()), degrees(c.y())});
-    for (const auto& c : h.world_corners) world.push_back(vec3(c));
-    out.push_back({{"id", h.id}, {"kind", to_string(h.kind)}, {"title", h.title},
-                   {"media", path_relative_to(h.media, base)}, {"frame", h.frame},
-                   {"image_corners_deg", image}, {"world_corners", world}, {"trigger", h.trigger},
-                   {"trigger_distance_m", h.trigger_distance_m}, {"action", h.action},
-                   {"action_target", h.action_target}});
+    json j = hotspot_to_json(h);
+    j["media"] = path_relative_to(h.media, base);
+    out.push_back(std::move(j));
   }
   return out;
 }
@@ -224,28 +215,8 @@ json hotspots_to_json(const std::vector<Hotspot>& hotspots, const std::string& b
 std::vector<Hotspot> hotspots_from_json(const JsonReader& r, const std::string& base) {
   std::vector<Hotspot> out;
   for (std::size_t i = 0; i < r.size(); ++i) {
-    const JsonReader j = r.at(i);
-    Hotspot h;
-    h.id = j.string("id");
-    try {
-      h.kind = hotspot_kind_from_string(j.string("kind"));
-    } catch (const Error& e) {
-      j.at("kind").fail(e.what());
-    }
-    h.title = j.string_or("title", "");
-    h.media = path_resolved_against(j.string_or("media", ""), base);
-    h.frame = j.integer_or("frame", -1);
-    if (auto corners = j.find("image_corners_deg"))
-      for (std::size_t k = 0; k < corners->size(); ++k) {
-        const Eigen::Vector2d d = read_vec2(corners->at(k));
-        h.image_corners.emplace_back(radians(d.x()), radians(d.y()));
-      }
-    if (auto corners = j.find("world_corners"))
-      for (std::size_t k = 0; k < corners->size(); ++k) h.world_corners.push_back(read_vec3(corners->at(k)));
-    h.trigger = j.string_or("trigger", "click");
-    h.trigger_distance_m = j.number_or("trigger_distance_m", 0.0);
-    h.action = j.string_or("action", "");
-    h.action_target = j.string_or("action_target", "");
+    Hotspot h = hotspot_from_json(r.at(i));
+    h.media = path_resolved_against(h.media, base);
     out.push_back(std::move(h));
   }
   return out;

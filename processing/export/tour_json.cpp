@@ -4,6 +4,7 @@
 #include <map>
 
 #include "model/error.h"
+#include "model/hotspot_io.h"
 #include "model/json_reader.h"
 #include "processing/export/tour_export.h"
 
@@ -77,23 +78,12 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
   for (const HotspotMediaFile& m : media) media_of[m.id] = &m;
   json hotspots = json::array();
   for (const Hotspot& h : project.hotspots) {
-    json image = json::array(), world = json::array();
-    for (const auto& c : h.image_corners) image.push_back({degrees(c.x()), degrees(c.y())});
-    for (const auto& c : h.world_corners) world.push_back({c.x(), c.y(), c.z()});
+    // The package's copies of the media replace the author's paths.
     const HotspotMediaFile* m = media_of.count(h.id) ? media_of[h.id] : nullptr;
-    std::string target = h.action_target;
-    if (m && !m->action_media.empty()) target = m->action_media;
-    hotspots.push_back({{"id", h.id},
-                        {"kind", to_string(h.kind)},
-                        {"title", h.title},
-                        {"frame", h.frame},
-                        {"image_corners_deg", image},
-                        {"world_corners", world},
-                        {"trigger", h.trigger},
-                        {"trigger_distance_m", h.trigger_distance_m},
-                        {"action", h.action},
-                        {"action_target", target},
-                        {"media", m ? m->media : std::string()}});
+    json j = hotspot_to_json(h);
+    j["media"] = m ? m->media : std::string();
+    if (m && !m->action_media.empty()) j["action_target"] = m->action_media;
+    hotspots.push_back(std::move(j));
   }
 
   json geo = nullptr;
@@ -197,31 +187,7 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
     }
 
   const JsonReader hotspots = r.at("hotspots");
-  for (std::size_t i = 0; i < hotspots.size(); ++i) {
-    const JsonReader j = hotspots.at(i);
-    Hotspot h;
-    h.id = j.string("id");
-    try {
-      h.kind = hotspot_kind_from_string(j.string("kind"));
-    } catch (const Error& e) {
-      j.at("kind").fail(e.what());
-    }
-    h.title = j.string_or("title", "");
-    h.frame = j.integer_or("frame", -1);
-    h.media = j.string_or("media", "");
-    const JsonReader image = j.at("image_corners_deg");
-    for (std::size_t k = 0; k < image.size(); ++k)
-      h.image_corners.emplace_back(radians(image.at(k).at(0).number()), radians(image.at(k).at(1).number()));
-    const JsonReader world = j.at("world_corners");
-    for (std::size_t k = 0; k < world.size(); ++k)
-      h.world_corners.emplace_back(world.at(k).at(0).number(), world.at(k).at(1).number(),
-                                   world.at(k).at(2).number());
-    h.trigger = j.string_or("trigger", "click");
-    h.trigger_distance_m = j.number_or("trigger_distance_m", 0.0);
-    h.action = j.string_or("action", "");
-    h.action_target = j.string_or("action_target", "");
-    p.hotspots.push_back(std::move(h));
-  }
+  for (std::size_t i = 0; i < hotspots.size(); ++i) p.hotspots.push_back(hotspot_from_json(hotspots.at(i)));
 
   if (auto g = r.find("geo_anchor")) {
     p.geo.valid = true;
