@@ -16,8 +16,8 @@ void copy_parts(const Project& from, Project& to, unsigned flags) {
   if (flags & kVisibilityChanged) to.visibility = from.visibility;
   if (flags & kKeyframesChanged) to.keyframes = from.keyframes;
   if (flags & kHotspotsChanged) to.hotspots = from.hotspots;
+  if (flags & kAnchorsChanged) to.anchors = from.anchors;
   if (flags & kSettingsChanged) {
-    to.anchors = from.anchors;
     to.geo = from.geo;
     to.tour = from.tour;
   }

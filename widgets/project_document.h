@@ -20,7 +20,8 @@ enum ChangeFlag : unsigned {
   kVisibilityChanged = 1u << 3,
   kKeyframesChanged = 1u << 4,
   kHotspotsChanged = 1u << 5,
-  kSettingsChanged = 1u << 6,  // geo anchor, tour settings, anchors
+  kSettingsChanged = 1u << 6,  // geo anchor, tour settings
+  kAnchorsChanged = 1u << 7,   // the author's drift anchors
   kEverythingChanged = 0xffu,
 };
 
