@@ -16,6 +16,7 @@
 #include "rig/spherical.h"
 #include "widgets/frame_provider.h"
 #include "widgets/fullscreen_triangle.h"
+#include "widgets/hotspot_editor.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -61,7 +62,7 @@ constexpr double kMaxFov = 2.1;   // 120 degrees
 }  // namespace
 
 PanoramaView::PanoramaView(ProjectDocument& document, FrameProvider& frames, QWidget* parent)
-    : QOpenGLWidget(parent), document_(document), frames_(frames) {
+    : QOpenGLWidget(parent), document_(document), frames_(frames), hotspots_(new HotspotEditor(document, *this)) {
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(240, 160);
   connect(&document_, &ProjectDocument::current_position_changed, this, [this] { show_current(); });
@@ -219,51 +220,7 @@ void PanoramaView::paintGL() {
 void PanoramaView::draw_overlay() {
   QPainter painter(this);
   painter.setRenderHint(QPainter::Antialiasing);
-  const Project& p = document_.project();
-  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
-  const double image_aspect =
-      texture_size_.isValid() ? texture_size_.width() / static_cast<double>(texture_size_.height()) : 2.0;
-  const QSizeF box = aspect > image_aspect ? QSizeF(height() * image_aspect, height())
-                                           : QSizeF(width(), width() / image_aspect);
-  const QPointF box_origin((width() - box.width()) / 2, (height() - box.height()) / 2);
-
-  // Screen point of a direction, or false when it is behind the viewer.
-  auto to_screen = [&](const SphericalAngles& angles, QPointF& out) {
-    if (equirect_mode_) {
-      const Eigen::Vector2d px = angles_to_equirect(angles, 1000, 500);
-      out = box_origin + QPointF(px.x() / 1000.0 * box.width(), px.y() / 500.0 * box.height());
-      return true;
-    }
-    const Eigen::Vector3d d = angles_to_bearing(angles);
-    const Eigen::Vector3d forward = angles_to_bearing({azimuth_, elevation_});
-    const Eigen::Vector3d left = angles_to_bearing({azimuth_ - M_PI / 2, 0.0});
-    const Eigen::Vector3d up = forward.cross(left).normalized();
-    const double z = d.dot(forward);
-    if (z <= 1e-3) return false;
-    const double t = std::tan(0.5 * fov_);
-    const double sx = -d.dot(left) / z / t;
-    const double sy = d.dot(up) / z / (t / aspect);
-    out = QPointF((sx * 0.5 + 0.5) * width(), (0.5 - sy * 0.5) * height());
-    return true;
-  };
-
-  // Hotspots authored in this frame.
-  const int index = document_.frame_index_at(document_.current_position());
-  painter.setPen(QPen(QColor(255, 200, 40), 2));
-  painter.setBrush(QColor(255, 200, 40, 50));
-  for (const Hotspot& h : p.hotspots) {
-    if (h.frame != index || h.image_corners.size() < 2) continue;
-    QPolygonF polygon;
-    bool visible = true;
-    for (const auto& c : h.image_corners) {
-      QPointF q;
-      visible = visible && to_screen({c.x(), c.y()}, q);
-      polygon << q;
-    }
-    if (!visible) continue;
-    painter.drawPolygon(polygon);
-    painter.drawText(polygon.boundingRect().topLeft() + QPointF(4, -4), QString::fromStdString(h.title));
-  }
+  hotspots_->paint(painter);
 
   // Caption: frame, look direction; or why there is nothing to show.
   painter.setPen(Qt::white);
@@ -285,9 +242,68 @@ void PanoramaView::draw_overlay() {
   if (!message_.isEmpty()) painter.drawText(rect().adjusted(12, 12, -12, -30), Qt::AlignCenter | Qt::TextWordWrap, message_);
 }
 
-void PanoramaView::mousePressEvent(QMouseEvent* event) { last_mouse_ = event->pos(); }
+QRectF PanoramaView::image_box() const {
+  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+  const double image_aspect =
+      texture_size_.isValid() ? texture_size_.width() / static_cast<double>(texture_size_.height()) : 2.0;
+  const QSizeF box = aspect > image_aspect ? QSizeF(height() * image_aspect, height())
+                                           : QSizeF(width(), width() / image_aspect);
+  return QRectF(QPointF((width() - box.width()) / 2, (height() - box.height()) / 2), box);
+}
+
+// The same camera as the shader: a screen point (sx, sy) in [-1, 1]^2 looks along
+// forward - sx * tan(fov/2) * left + sy * tan(fov/2) / aspect * up.
+std::optional<SphericalAngles> PanoramaView::direction_at(const QPointF& widget_point) const {
+  if (equirect_mode_) {
+    const QRectF box = image_box();
+    if (!box.contains(widget_point)) return std::nullopt;
+    const QPointF f = widget_point - box.topLeft();
+    return equirect_to_angles({f.x() / box.width() * 1000.0, f.y() / box.height() * 500.0}, 1000, 500);
+  }
+  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+  const Eigen::Vector3d forward = angles_to_bearing({azimuth_, elevation_});
+  const Eigen::Vector3d left = angles_to_bearing({azimuth_ - M_PI / 2, 0.0});
+  const Eigen::Vector3d up = forward.cross(left).normalized();
+  const double t = std::tan(0.5 * fov_);
+  const double sx = 2.0 * widget_point.x() / std::max(1, width()) - 1.0;
+  const double sy = 1.0 - 2.0 * widget_point.y() / std::max(1, height());
+  return bearing_to_angles(forward - sx * t * left + sy * t / aspect * up);
+}
+
+std::optional<QPointF> PanoramaView::widget_point_of(const SphericalAngles& direction) const {
+  if (equirect_mode_) {
+    const QRectF box = image_box();
+    const Eigen::Vector2d px = angles_to_equirect(direction, 1000, 500);
+    return box.topLeft() + QPointF(px.x() / 1000.0 * box.width(), px.y() / 500.0 * box.height());
+  }
+  const double aspect = std::max(1, width()) / static_cast<double>(std::max(1, height()));
+  const Eigen::Vector3d d = angles_to_bearing(direction);
+  const Eigen::Vector3d forward = angles_to_bearing({azimuth_, elevation_});
+  const Eigen::Vector3d left = angles_to_bearing({azimuth_ - M_PI / 2, 0.0});
+  const Eigen::Vector3d up = forward.cross(left).normalized();
+  const double z = d.dot(forward);
+  if (z <= 1e-3) return std::nullopt;
+  const double t = std::tan(0.5 * fov_);
+  const double sx = -d.dot(left) / z / t;
+  const double sy = d.dot(up) / z / (t / aspect);
+  return QPointF((sx * 0.5 + 0.5) * width(), (0.5 - sy * 0.5) * height());
+}
+
+void PanoramaView::mousePressEvent(QMouseEvent* event) {
+  last_mouse_ = event->pos();
+  hotspots_->mouse_press(event);
+}
+
+void PanoramaView::mouseReleaseEvent(QMouseEvent* event) {
+  if (!hotspots_->mouse_release(event)) QOpenGLWidget::mouseReleaseEvent(event);
+}
+
+void PanoramaView::mouseDoubleClickEvent(QMouseEvent* event) {
+  if (!hotspots_->mouse_double_click(event)) mousePressEvent(event);
+}
 
 void PanoramaView::mouseMoveEvent(QMouseEvent* event) {
+  if (hotspots_->mouse_move(event)) return;
   if (!(event->buttons() & Qt::LeftButton) || equirect_mode_) return;
   const QPoint delta = event->pos() - last_mouse_;
   last_mouse_ = event->pos();
@@ -302,6 +318,7 @@ void PanoramaView::wheelEvent(QWheelEvent* event) {
 }
 
 void PanoramaView::keyPressEvent(QKeyEvent* event) {
+  if (hotspots_->key_press(event)) return;
   switch (event->key()) {
     case Qt::Key_Right:
     case Qt::Key_PageDown: document_.step(event->modifiers() & Qt::ShiftModifier ? 10 : 1); break;

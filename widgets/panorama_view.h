@@ -2,11 +2,15 @@
 // The panorama: a perspective view of the current frame's equirectangular image, drawn by a fragment
 // shader that turns each screen pixel into a bearing and looks it up per rig/spherical.h's convention.
 // Drag to look around, wheel to change the field of view, Left/Right (or PageUp/PageDown) to step frames,
-// E to toggle the whole equirectangular image with the hotspots outlined.
+// E to toggle the whole equirectangular image with the hotspots outlined. Hotspot authoring (new quads,
+// handles, Delete, Esc) and the hotspot overlay live in HotspotEditor (widgets/hotspot_editor.h).
 #include <QImage>
 #include <QOpenGLFunctions>
 #include <QOpenGLWidget>
 #include <memory>
+#include <optional>
+
+#include "rig/spherical.h"
 
 class QOpenGLShaderProgram;
 class QOpenGLVertexArrayObject;
@@ -15,6 +19,7 @@ class QOpenGLBuffer;
 namespace plenopath::widgets {
 
 class FrameProvider;
+class HotspotEditor;
 class ProjectDocument;
 
 class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
@@ -35,6 +40,13 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   // Position whose image is on screen (-1 while none).
   int shown_position() const { return shown_position_; }
 
+  // Direction (azimuth, elevation in the frame's camera) under a widget point; none outside the image.
+  std::optional<SphericalAngles> direction_at(const QPointF& widget_point) const;
+  // Widget point of a direction in the frame's camera; none when behind the viewer.
+  std::optional<QPointF> widget_point_of(const SphericalAngles& direction) const;
+  // Hotspot authoring and overlay in this view.
+  HotspotEditor& hotspot_editor() const { return *hotspots_; }
+
  signals:
   void image_shown(int position);
   void equirect_mode_changed(bool whole_image);
@@ -44,6 +56,8 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   void paintGL() override;
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
   void wheelEvent(QWheelEvent* event) override;
   void keyPressEvent(QKeyEvent* event) override;
 
@@ -52,6 +66,8 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   void upload_pending_image();
   void draw_overlay();
   void release_gl();
+  // The letterboxed image's rectangle in whole-image mode (widget pixels).
+  QRectF image_box() const;
 
   ProjectDocument& document_;
   FrameProvider& frames_;
@@ -69,6 +85,7 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   double fov_ = 1.5707963267948966;
   bool equirect_mode_ = false;
   QPoint last_mouse_;
+  HotspotEditor* hotspots_;
 };
 
 }  // namespace plenopath::widgets
