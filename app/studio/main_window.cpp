@@ -28,11 +28,15 @@
 #include "app/studio/envelope_service.h"
 #include "app/studio/profile_service.h"
 #include "app/studio/reactions.h"
+#include "app/studio/refine_anchors_reaction.h"
 #include "app/studio/studio_tasks.h"
+#include "widgets/anchors_panel.h"
 #include "widgets/capture_import_dialog.h"
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
 #include "widgets/frame_provider.h"
+#include "widgets/hotspot_editor.h"
+#include "widgets/hotspots_panel.h"
 #include "widgets/layers_panel.h"
 #include "widgets/map_view.h"
 #include "widgets/panorama_view.h"
@@ -89,6 +93,7 @@ MainWindow::MainWindow(QWidget* parent)
   splitter->setSizes({550, 450});
   setCentralWidget(splitter);
   envelopes_ = new EnvelopeService(*document_, *map_, this);
+  connect(map_, &widgets::MapView::message, this, [this](const QString& text) { statusBar()->showMessage(text, 6000); });
 
   create_docks();
   create_actions();
@@ -160,7 +165,13 @@ void MainWindow::create_docks() {
   QDockWidget* sampling = dock(tr("Sampling"), "sampling_dock", sampling_, Qt::RightDockWidgetArea);
   QDockWidget* layers = dock(tr("Layers"), "layers_dock", layers_, Qt::RightDockWidgetArea);
   QDockWidget* undo = dock(tr("History"), "history_dock", history, Qt::RightDockWidgetArea);
+  anchors_ = new widgets::AnchorsPanel(*document_, this);
+  QDockWidget* anchors = dock(tr("Anchors"), "anchors_dock", anchors_, Qt::RightDockWidgetArea);
+  hotspots_ = new widgets::HotspotsPanel(*document_, panorama_->hotspot_editor(), this);
+  QDockWidget* hotspots = dock(tr("Hotspots"), "hotspots_dock", hotspots_, Qt::RightDockWidgetArea);
+  tabifyDockWidget(sampling, hotspots);
   tabifyDockWidget(layers, undo);
+  tabifyDockWidget(layers, anchors);
   sampling->raise();
   resizeDocks({sampling}, {300}, Qt::Horizontal);
 }
@@ -225,6 +236,36 @@ void MainWindow::create_actions() {
   view->addSeparator();
   for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
 
+  // Hotspots: marking modes in the panorama view (checkable: unchecking cancels a half-made one).
+  QMenu* hotspot_menu = menuBar()->addMenu(tr("Hot&spots"));
+  widgets::HotspotEditor* hotspot_editor = &panorama_->hotspot_editor();
+  QAction* new_movie = hotspot_menu->addAction(tr("New &movie texture"));
+  new_movie->setShortcut(tr("Ctrl+Shift+M"));
+  new_movie->setStatusTip(tr("Click four corners of a TV, poster or window in the panorama; it is placed on its wall"));
+  QAction* new_event = hotspot_menu->addAction(tr("New &event hotspot"));
+  new_event->setShortcut(tr("Ctrl+Shift+H"));
+  new_event->setStatusTip(tr("Click four corners (or Shift+click a polygon, Enter) of a region that reacts"));
+  for (QAction* a : {new_movie, new_event}) a->setCheckable(true);
+  using HotspotMode = widgets::HotspotEditor::Mode;
+  connect(new_movie, &QAction::triggered, this, [this, hotspot_editor](bool on) {
+    hotspot_editor->set_mode(on ? HotspotMode::kNewMovieTexture : HotspotMode::kIdle);
+    panorama_->setFocus();
+  });
+  connect(new_event, &QAction::triggered, this, [this, hotspot_editor](bool on) {
+    hotspot_editor->set_mode(on ? HotspotMode::kNewEvent : HotspotMode::kIdle);
+    panorama_->setFocus();
+  });
+  connect(hotspot_editor, &widgets::HotspotEditor::mode_changed, this, [new_movie, new_event](HotspotMode mode) {
+    new_movie->setChecked(mode == HotspotMode::kNewMovieTexture);
+    new_event->setChecked(mode == HotspotMode::kNewEvent);
+  });
+  connect(hotspot_editor, &widgets::HotspotEditor::status_message, this, [this](const QString& message) {
+    if (message.isEmpty()) statusBar()->clearMessage(); else statusBar()->showMessage(message, 15000);
+  });
+  QAction* delete_hotspot = hotspot_menu->addAction(tr("&Delete selected hotspot"), this,
+                                                    [hotspot_editor] { hotspot_editor->delete_selected(); });
+  delete_hotspot->setStatusTip(tr("Delete in the panorama view does the same"));
+
   QMenu* process = menuBar()->addMenu(tr("&Process"));
   QAction* track = process->addAction(tr("&Track camera path"));
   track->setShortcut(tr("Ctrl+Shift+T"));
@@ -234,6 +275,11 @@ void MainWindow::create_actions() {
   new ComputeVisibilityReaction(visibility, *this);
   QAction* resample = process->addAction(tr("&Resample keyframes"), this, [this] { sampling_->resample(0); });
   resample->setShortcut(tr("Ctrl+Shift+K"));
+  QAction* refine = process->addAction(tr("Refine path with &anchors"));
+  refine->setShortcut(tr("Ctrl+Shift+A"));
+  refine->setStatusTip(tr("Bend the path onto the anchors with the global refinement (Ceres); one undo step"));
+  new RefineWithAnchorsReaction(refine, *this);
+  anchors_->set_refine_action(refine);
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About"), this, [this] {
@@ -255,6 +301,8 @@ void MainWindow::create_actions() {
   bar->addAction(import_capture);
   bar->addAction(visibility);
   bar->addAction(whole);
+  bar->addAction(new_movie);
+  bar->addAction(new_event);
   bar->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
 }
 

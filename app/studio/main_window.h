@@ -11,7 +11,9 @@ class QProgressBar;
 class QToolButton;
 
 namespace plenopath::widgets {
+class AnchorsPanel;
 class FrameProvider;
+class HotspotsPanel;
 class LayersPanel;
 class MapView;
 class PanoramaView;
@@ -55,6 +57,8 @@ class MainWindow : public QMainWindow {
   widgets::FrameProvider& frame_provider() const { return *frames_; }
   widgets::SamplingPanel* sampling_panel() const { return sampling_; }
   widgets::TimelinePanel* timeline_panel() const { return timeline_; }
+  widgets::AnchorsPanel* anchors_panel() const { return anchors_; }
+  widgets::HotspotsPanel* hotspots_panel() const { return hotspots_; }
   EnvelopeService* envelopes() const { return envelopes_; }
   ProfileService* profiles() const { return profiles_; }
 
@@ -87,6 +91,8 @@ class MainWindow : public QMainWindow {
   widgets::TimelinePanel* timeline_ = nullptr;
   widgets::SamplingPanel* sampling_ = nullptr;
   widgets::LayersPanel* layers_ = nullptr;
+  widgets::AnchorsPanel* anchors_ = nullptr;
+  widgets::HotspotsPanel* hotspots_ = nullptr;
   EnvelopeService* envelopes_ = nullptr;
   ProfileService* profiles_ = nullptr;
   QProgressBar* progress_ = nullptr;
