@@ -24,6 +24,7 @@
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "widgets/map_hotspot_markers.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -172,6 +173,9 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
                       critical_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(), current_actor_.Get()})
     renderer_->AddActor(a);
 
+  hotspot_actor_ = make_hotspot_marker_actor();  // hotspots at their 3-D position
+  renderer_->AddActor(hotspot_actor_);
+
   caption_ = vtkSmartPointer<vtkTextActor>::New();
   caption_->GetTextProperty()->SetFontSize(14);
   caption_->GetTextProperty()->SetColor(0.2, 0.2, 0.25);
@@ -213,6 +217,7 @@ void MapView::on_document_changed(unsigned flags) {
   if (flags & (kPlanChanged | kVisibilityChanged)) rebuild_plan();
   if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
   if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
+  if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
   rebuild_current();
   if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
   request_render();

@@ -70,6 +70,7 @@ class MapView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkActor> current_actor_;
   vtkSmartPointer<vtkActor> envelope_actor_;
   vtkSmartPointer<vtkActor> cone_actor_;
+  vtkSmartPointer<vtkActor> hotspot_actor_;  // hotspots (widgets/map_hotspot_markers.h)
   vtkSmartPointer<vtkTextActor> caption_;
   QTimer* render_timer_;
   QPoint press_pixel_;

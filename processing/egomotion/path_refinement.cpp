@@ -1,9 +1,11 @@
 #include "processing/egomotion/path_refinement.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "model/error.h"
@@ -45,6 +47,18 @@ class ProgressCallback : public ceres::IterationCallback {
   double begin_, end_;
   int max_iterations_;
 };
+
+// Ceres reports through glog. Uninitialised, glog prefixes a warning about that to every message; and what
+// Ceres has to say (e.g. CHOLMOD on an ill-conditioned step, which the trust region then rejects and
+// retries) is not for the user. Initialised once, errors only.
+void quiet_ceres_logging() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging("plenopath");
+    FLAGS_logtostderr = true;
+    FLAGS_minloglevel = google::GLOG_ERROR;
+  });
+}
 
 double rms(const std::vector<double>& e) {
   double s = 0.0;
@@ -157,6 +171,7 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
                                const RefinementProgress& progress) {
   const std::string bad = options.check();
   if (!bad.empty()) throw Error("refinement options: " + bad);
+  quiet_ceres_logging();
   RefinementReport report;
   report.initial_rms = rms(observation_errors(problem));
   const int n = static_cast<int>(problem.poses.size());

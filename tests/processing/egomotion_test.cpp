@@ -166,6 +166,36 @@ TEST(Egomotion, ShortRenderedWalkAgainstGroundTruth) {
   EXPECT_NE(std::find(stages.begin(), stages.end(), "refinement"), stages.end());
 }
 
+// Same input, same output, bit for bit: twice in a row, and once more with OpenCV on a single thread (its
+// thread pool must not change what the KLT stage finds).
+TEST(Egomotion, SameInputGivesTheSameResultBitForBit) {
+  const Walk& walk = short_walk();
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  auto track = [&] {
+    return EgomotionTracker::run(48, [&](int i) { return walk.frames[i]; }, options);
+  };
+  const EgomotionResult first = track();
+  const EgomotionResult second = track();
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  const EgomotionResult single = track();
+  cv::setNumThreads(threads);
+  ASSERT_EQ(first.path.size(), 48u);
+  for (const EgomotionResult* other : {&second, &single}) {
+    ASSERT_EQ(other->path.size(), first.path.size());
+    EXPECT_EQ(other->points, first.points);
+    EXPECT_EQ(other->observations, first.observations);
+    EXPECT_EQ(other->scale_factor, first.scale_factor);
+    for (size_t i = 0; i < first.path.size(); ++i) {
+      const PathFrame &a = first.path.frames[i], &b = other->path.frames[i];
+      EXPECT_TRUE(a.x == b.x && a.y == b.y && a.heading == b.heading && a.flags == b.flags)
+          << "frame " << i << ": " << a.x << " " << a.y << " " << a.heading << " vs " << b.x << " " << b.y << " "
+          << b.heading;
+    }
+  }
+}
+
 TEST(Egomotion, CancelDuringRefinementStopsCleanly) {
   const Walk& walk = short_walk();
   EgomotionOptions options;
