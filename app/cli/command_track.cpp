@@ -1,6 +1,11 @@
-// `plenopath track --capture DIR|VIDEO [--camera-height M] [--out PATH.json] [--json]`: the camera path
-// from the panoramas alone (processing/egomotion/egomotion.h). Progress goes to stderr.
+// `plenopath track --capture DIR|VIDEO [--first N] [--last M] [--stride K] [--camera-height M]
+// [--out PATH.json] [--json]`: the camera path from the panoramas alone (processing/egomotion/egomotion.h).
+// Progress goes to stderr. Frame indices (path file, --known-distance, --first/--last) are positions in the
+// whole capture: the natural order of the folder's image files, or the video's frame numbers.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -13,6 +18,43 @@
 #include "processing/frame_source.h"
 
 namespace plenopath::cli {
+namespace {
+
+// Position of each kept frame in the whole capture. A folder's frames are counted in the natural order of
+// its image files (as FrameSource sorts them), so a corrupt file left out keeps its place in the count.
+std::vector<int> capture_positions(const FrameSource& source) {
+  const int n = source.frame_count();
+  const FrameSourceOptions& o = source.options();
+  std::vector<int> positions(n);
+  for (int i = 0; i < n; ++i) positions[i] = o.first_frame + i * o.stride;
+  if (source.kind() == CaptureKind::kVideo) {
+    for (int i = 0; i < n; ++i) positions[i] = std::max(0, source.frame_number(i));
+  } else if (source.kind() == CaptureKind::kImageFolder && source.head_count() == 0) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(source.source(), ec)) {
+      std::error_code e2;
+      if (!e.is_regular_file(e2)) continue;
+      const std::string name = e.path().filename().string();
+      std::string ext = e.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (name.empty() || name[0] == '.') continue;
+      if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".exr")
+        names.push_back(name);
+    }
+    std::sort(names.begin(), names.end(), natural_less);
+    std::map<std::string, int> position_of;
+    for (size_t p = 0; p < names.size(); ++p) position_of[names[p]] = static_cast<int>(p);
+    for (int i = 0; i < n; ++i) {
+      const auto it = position_of.find(source.frame_name(i));
+      if (it != position_of.end()) positions[i] = it->second;
+    }
+  }
+  return positions;
+}
+
+}  // namespace
 
 Command add_track_command(CLI::App& parent) {
   struct Options {
@@ -22,6 +64,9 @@ Command add_track_command(CLI::App& parent) {
     bool json = false;
     bool quiet = false;
     int work_width = 1024;
+    int first = 0;
+    int last = -1;
+    int stride = 1;
     std::vector<double> known_distance;  // frame a, frame b, metres
   };
   auto options = std::make_shared<Options>();
@@ -34,24 +79,45 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--known-distance", options->known_distance,
                   "Metric scale from a distance the author knows: FRAME_A FRAME_B METRES (used without --camera-height)")
       ->expected(3);
+  sub->add_option("--first", options->first, "First frame tracked (position in the capture, from 0)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--last", options->last, "Last frame tracked, inclusive (default: the capture's last)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--stride", options->stride, "Track every K-th frame from --first on")->check(CLI::PositiveNumber);
   sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
   sub->add_option("--work-width", options->work_width, "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
   sub->add_flag("--quiet", options->quiet, "No progress on stderr");
   return {sub, [options]() {
-            std::unique_ptr<FrameSource> source = FrameSource::open(options->capture);
+            if (options->last >= 0 && options->last < options->first)
+              throw Error("--last " + std::to_string(options->last) + " is before --first " +
+                          std::to_string(options->first));
+            FrameSourceOptions source_options;
+            source_options.first_frame = options->first;
+            source_options.last_frame = options->last;
+            source_options.stride = options->stride;
+            std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
+            const int n = source->frame_count();
+            const std::vector<int> positions = capture_positions(*source);
             EgomotionOptions eo;
             eo.camera_height_m = options->camera_height;
             eo.klt.work_width = options->work_width;
             if (options->known_distance.size() == 3) {
-              eo.scale_frame_a = static_cast<int>(options->known_distance[0]);
-              eo.scale_frame_b = static_cast<int>(options->known_distance[1]);
+              // Capture positions to positions among the tracked frames.
+              auto tracked = [&](double frame) {
+                const auto it = std::find(positions.begin(), positions.end(), static_cast<int>(frame));
+                if (it == positions.end())
+                  throw Error("--known-distance: frame " + std::to_string(static_cast<int>(frame)) +
+                              " is not among the tracked frames (see --first, --last, --stride)");
+                return static_cast<int>(it - positions.begin());
+              };
+              eo.scale_frame_a = tracked(options->known_distance[0]);
+              eo.scale_frame_b = tracked(options->known_distance[1]);
               eo.scale_distance_m = options->known_distance[2];
               const std::string bad = eo.check();
               if (!bad.empty()) throw Error("--known-distance: " + bad);
             }
-            const int n = source->frame_count();
             int last_percent = -1;
             std::string last_stage;
             auto progress = [&](const std::string& stage, double f) {
@@ -65,12 +131,16 @@ Command add_track_command(CLI::App& parent) {
             };
             EgomotionResult r = EgomotionTracker::run(n, [&](int i) { return source->read(i); }, eo, progress);
             for (int i = 0; i < n && i < static_cast<int>(r.path.frames.size()); ++i) {
+              r.path.frames[i].index = positions[i];
               if (source->kind() == CaptureKind::kImageFolder) r.path.frames[i].file = source->frame_name(i);
             }
             if (!options->out.empty()) write_path_file(r.path, options->out);
             const nlohmann::json summary = {
                 {"capture", options->capture},
                 {"frames", r.path.size()},
+                {"first_index", positions.empty() ? 0 : positions.front()},
+                {"last_index", positions.empty() ? 0 : positions.back()},
+                {"stride", options->stride},
                 {"keyframes", r.keyframes.size()},
                 {"points", r.points},
                 {"length", r.path.length()},

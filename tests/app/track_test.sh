@@ -54,6 +54,27 @@ assert s["frames"] == 3, s
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
 PY
+# A range and a stride: indices stay positions in the whole capture (natural order).
+"$cli" track --capture "$tmp/cap" --first 1 --last 2 --out "$tmp/range.json" --quiet > /dev/null 2> "$tmp/err.txt" \
+  || fail "track --first 1 --last 2 exit $?: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --stride 2 --out "$tmp/stride.json" --quiet > /dev/null 2> "$tmp/err.txt" \
+  || fail "track --stride 2 exit $?: $(cat "$tmp/err.txt")"
+python3 - "$tmp/range.json" "$tmp/stride.json" <<'PY' || fail "range/stride output: $(cat "$tmp/range.json" "$tmp/stride.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+s = json.load(open(sys.argv[2]))
+assert [(f["index"], f["file"]) for f in r["frames"]] == [(1, "f10.png"), (2, "f11.png")], r
+assert [(f["index"], f["file"]) for f in s["frames"]] == [(0, "f9.png"), (2, "f11.png")], s
+PY
+"$cli" track --capture "$tmp/cap" --first 2 --last 1 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "--last before --first: exit $code"
+grep -q -- "--last" "$tmp/err.txt" || fail "--last before --first message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --first 7 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "--first beyond the capture: exit $code"
+grep -q "cap" "$tmp/err.txt" || fail "--first beyond the capture message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --stride 2 --known-distance 0 1 2 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "--known-distance on an untracked frame: exit $code"
+grep -q "not among the tracked frames" "$tmp/err.txt" || fail "untracked frame message: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/nothing-here" 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing capture: exit $code"
 grep -q "nothing-here" "$tmp/err.txt" || fail "missing capture message: $(cat "$tmp/err.txt")"
