@@ -1,7 +1,9 @@
 #include "widgets/map_view.h"
 
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QTimer>
+#include <QUndoStack>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,6 +26,9 @@
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "model/error.h"
+#include "processing/anchors/anchor_refinement.h"
+#include "widgets/anchor_commands.h"
 #include "widgets/map_hotspot_markers.h"
 #include "widgets/project_document.h"
 
@@ -52,9 +57,16 @@ constexpr double kEnvelopeZ = -0.02;
 constexpr double kConeZ = -0.01;
 constexpr double kPlanZ = 0.0;
 constexpr double kCriticalZ = 0.005;
+constexpr double kGhostPathZ = 0.008;
 constexpr double kPathZ = 0.01;
 constexpr double kKeyframeZ = 0.02;
+constexpr double kResidualZ = 0.025;
 constexpr double kCurrentZ = 0.03;
+constexpr double kAnchorZ = 0.04;
+
+// How close (pixels) a press must be to a frame or an anchor marker, and a plan corner to snap to.
+constexpr double kPickRadiusPx = 12.0;
+constexpr double kSnapRadiusPx = 10.0;
 
 const std::array<unsigned char, 3> kBackground{246, 245, 240};
 
@@ -169,8 +181,18 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   current_actor_ = make_actor(dark, 1.0);
   current_actor_->GetProperty()->SetPointSize(15.0f);
   current_actor_->GetProperty()->RenderPointsAsSpheresOn();
+  const double ghost[3] = {0.55, 0.55, 0.55};
+  const double anchor[3] = {0.82, 0.0, 0.55};
+  const double white[3] = {1.0, 1.0, 1.0};
+  ghost_path_actor_ = make_actor(ghost, 2.0, 0.6);
+  residual_actor_ = make_actor(anchor, 2.0);
+  anchor_actor_ = make_actor(anchor, 1.0);
+  anchor_actor_->GetProperty()->SetPointSize(13.0f);  // squares: distinct from the round keyframes
+  anchor_core_actor_ = make_actor(white, 1.0);
+  anchor_core_actor_->GetProperty()->SetPointSize(5.0f);
   for (vtkActor* a : {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
-                      critical_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(), current_actor_.Get()})
+                      critical_actor_.Get(), ghost_path_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(),
+                      residual_actor_.Get(), current_actor_.Get(), anchor_actor_.Get(), anchor_core_actor_.Get()})
     renderer_->AddActor(a);
 
   hotspot_actor_ = make_hotspot_marker_actor();  // hotspots at their 3-D position
@@ -181,6 +203,14 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   caption_->GetTextProperty()->SetColor(0.2, 0.2, 0.25);
   caption_->SetDisplayPosition(10, 8);
   renderer_->AddViewProp(caption_);
+  hint_ = vtkSmartPointer<vtkTextActor>::New();
+  hint_->GetTextProperty()->SetFontSize(12);
+  hint_->GetTextProperty()->SetColor(0.45, 0.45, 0.5);
+  hint_->GetTextProperty()->SetVerticalJustificationToTop();
+  hint_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  hint_->GetPositionCoordinate()->SetValue(0.01, 0.985);
+  renderer_->AddViewProp(hint_);
+  setToolTip(anchor_hint());
 
   render_timer_->setSingleShot(true);
   render_timer_->setInterval(0);
@@ -214,9 +244,15 @@ void MapView::render_now() {
 }
 
 void MapView::on_document_changed(unsigned flags) {
+  if (drag_.active && (flags & (kPathChanged | kAnchorsChanged))) end_anchor_drag(false);  // undone under us
   if (flags & (kPlanChanged | kVisibilityChanged)) rebuild_plan();
   if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
   if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
+  if (flags & (kPathChanged | kAnchorsChanged)) rebuild_anchors(document_.project().path, document_.project().anchors);
+  hint_->SetInput(document_.project().path.empty()
+                      ? ""
+                      : "Ctrl+drag a frame: anchor it where it really was  ·  + Shift: snap to a plan corner  ·  "
+                        "drag an anchor to move it");
   if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
   rebuild_current();
   if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
@@ -267,19 +303,22 @@ void MapView::rebuild_plan() {
 }
 
 void MapView::rebuild_path() {
-  const Project& p = document_.project();
-  const std::vector<int> cell = cell_of_positions(document_);
+  path_cells_ = cell_of_positions(document_);
+  set_path_geometry(document_.project().path);
+}
+
+void MapView::set_path_geometry(const CameraPath& path_frames) {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> lines;
   vtkNew<vtkUnsignedCharArray> colours;
   colours->SetNumberOfComponents(3);
   // One segment per pair of frames so each takes its cell's colour sharply.
-  for (std::size_t i = 0; i < p.path.size(); ++i)
-    points->InsertNextPoint(p.path.frames[i].x, p.path.frames[i].y, kPathZ);
-  for (std::size_t i = 0; i + 1 < p.path.size(); ++i) {
+  for (std::size_t i = 0; i < path_frames.size(); ++i)
+    points->InsertNextPoint(path_frames.frames[i].x, path_frames.frames[i].y, kPathZ);
+  for (std::size_t i = 0; i + 1 < path_frames.size(); ++i) {
     const vtkIdType ids[2] = {static_cast<vtkIdType>(i), static_cast<vtkIdType>(i + 1)};
     lines->InsertNextCell(2, ids);
-    const auto c = cell_colour(cell[i]);
+    const auto c = cell_colour(i < path_cells_.size() ? path_cells_[i] : -1);
     colours->InsertNextTypedTuple(c.data());
   }
   vtkNew<vtkPolyData> path;
@@ -287,6 +326,29 @@ void MapView::rebuild_path() {
   path->SetLines(lines);
   path->GetCellData()->SetScalars(colours);
   set_polydata(path_actor_, path);
+}
+
+void MapView::rebuild_anchors(const CameraPath& path, const Anchors& anchors) {
+  vtkNew<vtkPoints> points, line_points;
+  vtkNew<vtkCellArray> verts, lines;
+  for (const Anchor& a : anchors) {
+    const vtkIdType id = points->InsertNextPoint(a.position.x(), a.position.y(), kAnchorZ);
+    verts->InsertNextCell(1, &id);
+    // The residual: from the anchor to where its frame is on the path.
+    if (const PathFrame* f = path.find_frame(a.frame)) {
+      const vtkIdType ids[2] = {line_points->InsertNextPoint(a.position.x(), a.position.y(), kResidualZ),
+                                line_points->InsertNextPoint(f->x, f->y, kResidualZ)};
+      lines->InsertNextCell(2, ids);
+    }
+  }
+  vtkNew<vtkPolyData> markers, residuals;
+  markers->SetPoints(points);
+  markers->SetVerts(verts);
+  residuals->SetPoints(line_points);
+  residuals->SetLines(lines);
+  set_polydata(anchor_actor_, markers);
+  set_polydata(anchor_core_actor_, markers);
+  set_polydata(residual_actor_, residuals);
 }
 
 void MapView::rebuild_keyframes() {
@@ -424,6 +486,10 @@ QPoint MapView::widget_pixel_of(const Eigen::Vector2d& plan_point) {
 }
 
 bool MapView::event(QEvent* e) {
+  if (handle_anchor_event(e)) {
+    e->accept();
+    return true;
+  }
   if (e->type() == QEvent::MouseButtonPress) {
     auto* m = static_cast<QMouseEvent*>(e);
     if (m->button() == Qt::LeftButton) press_pixel_ = m->pos();
@@ -439,23 +505,176 @@ bool MapView::event(QEvent* e) {
 }
 
 void MapView::handle_click(const QPoint& pixel) {
-  const Project& p = document_.project();
-  if (p.path.empty()) return;
+  const int best = frame_near(pixel, 15.0);  // a click within 15 pixels of the path counts
+  if (best < 0) return;
+  document_.set_current_position(best);
+  emit frame_clicked(best);
+}
+
+double MapView::metres_per_pixel() const {
+  return 2.0 * renderer_->GetActiveCamera()->GetParallelScale() / std::max(1, height());
+}
+
+int MapView::frame_near(const QPoint& pixel, double radius_px) {
+  const CameraPath& path = document_.project().path;
   const Eigen::Vector2d q = plan_point_at(pixel);
-  const double metres_per_pixel =
-      2.0 * renderer_->GetActiveCamera()->GetParallelScale() / std::max(1, height());
   int best = -1;
-  double best_distance = 15.0 * metres_per_pixel;  // a click within 15 pixels of the path counts
-  for (std::size_t i = 0; i < p.path.size(); ++i) {
-    const double d = (p.path.frames[i].position() - q).norm();
+  double best_distance = radius_px * metres_per_pixel();
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const double d = (path.frames[i].position() - q).norm();
     if (d < best_distance) {
       best_distance = d;
       best = static_cast<int>(i);
     }
   }
-  if (best < 0) return;
-  document_.set_current_position(best);
-  emit frame_clicked(best);
+  return best;
+}
+
+int MapView::anchor_near(const QPoint& pixel, double radius_px) {
+  const Eigen::Vector2d q = plan_point_at(pixel);
+  int best = -1;
+  double best_distance = radius_px * metres_per_pixel();
+  for (const Anchor& a : document_.project().anchors) {
+    const double d = (a.position - q).norm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = a.frame;
+    }
+  }
+  return best;
+}
+
+Eigen::Vector2d MapView::anchor_target(const QPoint& pixel, bool snap, bool* snapped) {
+  const Eigen::Vector2d q = plan_point_at(pixel);
+  *snapped = false;
+  if (!snap) return q;
+  const Project& p = document_.project();
+  Eigen::Vector2d best = q;
+  double best_distance = kSnapRadiusPx * metres_per_pixel();
+  for (const PlanSegment& s : p.plan.segments) {
+    const PlanLayer* layer = p.plan.find_layer(s.layer);
+    if (layer && !layer->visible) continue;
+    for (const Eigen::Vector2d& corner : {s.a, s.b}) {
+      const double d = (corner - q).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = corner;
+        *snapped = true;
+      }
+    }
+  }
+  return best;
+}
+
+QString MapView::anchor_hint() {
+  return tr("Ctrl + drag a frame of the path to where it really was (an anchor); hold Shift too to snap to a "
+            "plan corner. Drag an anchor marker to move it; Esc cancels a drag.");
+}
+
+// Returns true when the event belonged to an anchor drag (it then does not reach VTK's pan and zoom).
+bool MapView::handle_anchor_event(QEvent* e) {
+  if (e->type() == QEvent::MouseButtonPress) {
+    auto* m = static_cast<QMouseEvent*>(e);
+    if (m->button() != Qt::LeftButton || document_.project().path.empty()) return false;
+    int frame = -1;
+    if (m->modifiers() & Qt::ControlModifier) {
+      const int position = frame_near(m->pos(), kPickRadiusPx);
+      if (position >= 0) frame = document_.project().path.frames[position].index;
+    }
+    if (frame < 0) frame = anchor_near(m->pos(), kPickRadiusPx);  // an existing marker: no modifier needed
+    if (frame < 0) return false;
+    drag_ = AnchorDrag{};
+    drag_.active = true;
+    drag_.frame = frame;
+    drag_.press_pixel = m->pos();
+    const PathFrame* f = document_.project().path.find_frame(frame);
+    if (f) document_.set_current_position(document_.position_of_frame_index(frame));
+    emit message(tr("Anchoring frame %1: release where it really was (Shift snaps, Esc cancels)").arg(frame));
+    return true;
+  }
+  if (!drag_.active) return false;
+  if (e->type() == QEvent::MouseMove) {
+    auto* m = static_cast<QMouseEvent*>(e);
+    if (!drag_.moved && (m->pos() - drag_.press_pixel).manhattanLength() <= 3) return true;
+    drag_.moved = true;
+    update_anchor_drag(m->pos(), m->modifiers() & Qt::ShiftModifier);
+    return true;
+  }
+  if (e->type() == QEvent::MouseButtonRelease) {
+    auto* m = static_cast<QMouseEvent*>(e);
+    if (m->button() != Qt::LeftButton) return true;
+    if (drag_.moved) {
+      update_anchor_drag(m->pos(), m->modifiers() & Qt::ShiftModifier);
+      end_anchor_drag(true);
+    } else {
+      end_anchor_drag(false);  // a click on a marker: the frame is already current
+    }
+    return true;
+  }
+  if (e->type() == QEvent::KeyPress && static_cast<QKeyEvent*>(e)->key() == Qt::Key_Escape) {
+    end_anchor_drag(false);
+    emit message(tr("Anchor drag cancelled"));
+    return true;
+  }
+  return false;
+}
+
+void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
+  drag_.target = anchor_target(pixel, snap, &drag_.snapped);
+  const CameraPath& path = document_.project().path;
+  drag_.anchors = anchors_with(document_.project().anchors, drag_.frame, drag_.target);
+  try {
+    drag_.preview = preview_path_with_anchors(path, drag_.anchors);
+    drag_.valid = true;
+  } catch (const Error& e) {
+    drag_.valid = false;
+    drag_.preview = path;
+    emit message(QString::fromStdString(e.what()));
+  }
+  // The path before the drag stays as a grey ghost under the bent one.
+  vtkNew<vtkPoints> ghost_points;
+  vtkNew<vtkCellArray> ghost_lines;
+  for (std::size_t i = 0; i < path.size(); ++i)
+    ghost_points->InsertNextPoint(path.frames[i].x, path.frames[i].y, kGhostPathZ);
+  ghost_lines->InsertNextCell(static_cast<vtkIdType>(path.size()));
+  for (std::size_t i = 0; i < path.size(); ++i) ghost_lines->InsertCellPoint(static_cast<vtkIdType>(i));
+  vtkNew<vtkPolyData> ghost;
+  ghost->SetPoints(ghost_points);
+  ghost->SetLines(ghost_lines);
+  set_polydata(ghost_path_actor_, ghost);
+  set_path_geometry(drag_.preview);
+  rebuild_anchors(drag_.preview, drag_.anchors);
+  char text[160];
+  std::snprintf(text, sizeof text, "anchor frame %d -> (%.2f, %.2f) m%s  ·  Esc cancels", drag_.frame,
+                drag_.target.x(), drag_.target.y(), drag_.snapped ? "  [snapped to a plan corner]" : "");
+  caption_->SetInput(text);
+  request_render();
+}
+
+void MapView::end_anchor_drag(bool apply) {
+  if (!drag_.active) return;
+  const AnchorDrag drag = drag_;
+  drag_ = AnchorDrag{};
+  set_polydata(ghost_path_actor_, vtkNew<vtkPolyData>().Get());
+  if (apply && drag.valid) {
+    const bool existing = std::any_of(document_.project().anchors.begin(), document_.project().anchors.end(),
+                                      [&](const Anchor& a) { return a.frame == drag.frame; });
+    try {
+      document_.undo_stack()->push(new SetAnchorsCommand(
+          document_, existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
+          drag.anchors, true));
+      emit message(tr("Frame %1 anchored at (%2, %3) m").arg(drag.frame).arg(drag.target.x(), 0, 'f', 2).arg(
+          drag.target.y(), 0, 'f', 2));
+      return;  // the document's change redraws everything
+    } catch (const Error& e) {
+      emit message(QString::fromStdString(e.what()));
+    }
+  }
+  // Cancelled or refused: back to the document's path and anchors.
+  set_path_geometry(document_.project().path);
+  rebuild_anchors(document_.project().path, document_.project().anchors);
+  rebuild_current();
+  request_render();
 }
 
 }  // namespace plenopath::widgets

@@ -3,6 +3,11 @@
 // drawn dark and thick, the path coloured by visibility cell, the cells' critical lines, keyframes as
 // markers, and the current frame with its envelope (visibility polygon) and the panorama view's cone.
 // Left drag pans, the wheel (or right drag) zooms, a click on the path goes to the nearest frame.
+// Drift anchors: Ctrl + left drag from any frame of the path puts that frame where it really was (Shift held
+// at the same time snaps to the nearest plan corner within a few pixels); a plain left drag on an anchor
+// marker moves it; Esc cancels a drag. While dragging, the whole path is previewed bent by the anchors (the
+// fast warp); the release is one undo step. Anchors are magenta squares, each with a thin line to where its
+// frame is on the path (the residual).
 // Renders are requested and coalesced (one per event-loop turn), never forced by the model.
 #include <Eigen/Core>
 #include <QVTKOpenGLNativeWidget.h>
@@ -11,6 +16,9 @@
 #include <vector>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+
+#include "model/anchors.h"
+#include "model/camera_path.h"
 
 class QTimer;
 class vtkActor;
@@ -44,9 +52,17 @@ class MapView : public QVTKOpenGLNativeWidget {
   // Widget pixel of a plan point.
   QPoint widget_pixel_of(const Eigen::Vector2d& plan_point);
 
+  // How to place anchors, as the tooltip and the status bar say it.
+  static QString anchor_hint();
+  bool is_dragging_anchor() const { return drag_.active; }
+  // The path as previewed during an anchor drag (empty when not dragging).
+  const CameraPath& anchor_preview() const { return drag_.preview; }
+
  signals:
   // The user clicked on the path near the frame at `position` (the document has already moved there).
   void frame_clicked(int position);
+  // A short message for the status bar (what a drag does, or why an anchor could not be placed).
+  void message(const QString& text);
 
  protected:
   bool event(QEvent* event) override;
@@ -55,9 +71,34 @@ class MapView : public QVTKOpenGLNativeWidget {
   void on_document_changed(unsigned flags);
   void rebuild_plan();
   void rebuild_path();
+  void set_path_geometry(const CameraPath& path);
   void rebuild_keyframes();
   void rebuild_current();
+  void rebuild_anchors(const CameraPath& path, const Anchors& anchors);
   void handle_click(const QPoint& pixel);
+  double metres_per_pixel() const;
+  // Position (into path.frames) of the frame nearest `pixel` within `radius_px`, or -1.
+  int frame_near(const QPoint& pixel, double radius_px);
+  // Frame index of the anchor marker nearest `pixel` within `radius_px`, or -1.
+  int anchor_near(const QPoint& pixel, double radius_px);
+  // The plan point under `pixel`, snapped to the nearest segment end of a visible layer when `snap`.
+  Eigen::Vector2d anchor_target(const QPoint& pixel, bool snap, bool* snapped);
+  bool handle_anchor_event(QEvent* event);
+  void update_anchor_drag(const QPoint& pixel, bool snap);
+  void end_anchor_drag(bool apply);
+
+  // An anchor drag in progress.
+  struct AnchorDrag {
+    bool active = false;
+    int frame = -1;           // capture index of the dragged frame
+    QPoint press_pixel;
+    bool moved = false;
+    Eigen::Vector2d target = Eigen::Vector2d::Zero();
+    bool snapped = false;
+    bool valid = false;       // the preview could be computed
+    Anchors anchors;          // the document's anchors with the dragged one moved
+    CameraPath preview;       // the path bent by them
+  };
 
   ProjectDocument& document_;
   EnvelopeFunction envelope_function_;
@@ -70,8 +111,15 @@ class MapView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkActor> current_actor_;
   vtkSmartPointer<vtkActor> envelope_actor_;
   vtkSmartPointer<vtkActor> cone_actor_;
+  vtkSmartPointer<vtkActor> ghost_path_actor_;  // the path before the drag, while dragging
+  vtkSmartPointer<vtkActor> residual_actor_;
+  vtkSmartPointer<vtkActor> anchor_actor_;
+  vtkSmartPointer<vtkActor> anchor_core_actor_;
   vtkSmartPointer<vtkActor> hotspot_actor_;  // hotspots (widgets/map_hotspot_markers.h)
   vtkSmartPointer<vtkTextActor> caption_;
+  vtkSmartPointer<vtkTextActor> hint_;
+  std::vector<int> path_cells_;  // visibility cell of each path position (colours)
+  AnchorDrag drag_;
   QTimer* render_timer_;
   QPoint press_pixel_;
   bool camera_fitted_ = false;

@@ -32,16 +32,9 @@ Command add_refine_command(CLI::App& parent) {
             if (!o->anchors.empty()) project.anchors = read_anchors_file(o->anchors);
             // The capture's GPS track, when there is one and the plan is on Earth, adds weak priors.
             std::vector<GpsPrior> gps;
-            if (!project.capture.gps_track.empty() && project.geo.valid && !o->preview) {
-              std::vector<double> times;
-              for (const PathFrame& f : project.path.frames)
-                times.push_back((project.capture.first_frame + f.index * project.capture.stride) /
-                                project.capture.frame_rate);
-              GpsMatchOptions match;
-              match.time_offset_s = project.capture.gps_time_offset_s;
-              gps = gps_priors(project.capture.gps_track, times, project.geo, match);
-              for (GpsPrior& g : gps) g.frame = project.path.frames[static_cast<std::size_t>(g.frame)].index;
-              std::cerr << "refine: " << gps.size() << " frames have a GPS fix (weak priors)\n";
+            if (!o->preview) {
+              gps = gps_priors_for_path(project);
+              if (!gps.empty()) std::cerr << "refine: " << gps.size() << " frames have a GPS fix (weak priors)\n";
             }
             if (project.anchors.empty() && gps.size() < 2)
               throw plenopath::Error(o->project + ": no anchors (place some in the studio or pass --anchors FILE)");

@@ -1,6 +1,10 @@
 #include "app/studio/studio_tasks.h"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "model/error.h"
+#include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/frame_source.h"
 #include "processing/visibility.h"
@@ -80,6 +84,33 @@ widgets::TaskFunction compute_visibility_task() {
     });
     progress.report(1.0);
     return TaskResult{std::move(project), widgets::kVisibilityChanged};
+  };
+}
+
+widgets::TaskFunction refine_with_anchors_task() {
+  return [](Project project, TaskProgress& progress) {
+    if (project.path.empty()) throw Error("the project has no camera path to refine");
+    const std::vector<GpsPrior> gps = gps_priors_for_path(project);
+    if (project.anchors.empty() && gps.size() < 2)
+      throw Error("no anchors: Ctrl + drag a frame on the map to where it really was first");
+    AnchorRefinementOptions options;
+    AnchorRefinementReport report;
+    progress.report(0.02, "refining " + std::to_string(project.path.size()) + " frames with " +
+                              std::to_string(project.anchors.size()) + " anchors");
+    project.path = refine_path_with_anchors(project.path, project.anchors, options, &report, [&](int iteration) {
+      progress.report(std::min(0.99, (iteration + 1.0) / options.max_iterations),
+                      "iteration " + std::to_string(iteration));
+      return !progress.cancelled();
+    }, gps);
+    if (report.cancelled) throw TaskCancelled{};
+    project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
+    double worst = 0.0;
+    for (const AnchorResidual& r : report.residuals) worst = std::max(worst, r.distance_m);
+    char done[160];
+    std::snprintf(done, sizeof done, "refined in %d iterations; largest anchor residual %.3f m", report.iterations,
+                  worst);
+    progress.report(1.0, done);
+    return TaskResult{std::move(project), widgets::kPathChanged};
   };
 }
 

@@ -13,5 +13,9 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
 widgets::TaskFunction track_path_task();
 // Visibility events, cells and critical lines along the path (processing/visibility.h).
 widgets::TaskFunction compute_visibility_task();
+// The path refined with the anchors as priors (Ceres pose graph with a drift model, plus the capture's GPS
+// fixes as weak priors when there are any; processing/anchors/anchor_refinement.h). Progress per solver
+// iteration; cancel stops the solver and changes nothing.
+widgets::TaskFunction refine_with_anchors_task();
 
 }  // namespace plenopath::studio

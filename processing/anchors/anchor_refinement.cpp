@@ -109,7 +109,7 @@ struct HeadingPrior {
 
 class ProgressCallback : public ceres::IterationCallback {
  public:
-  explicit ProgressCallback(const RefinementProgress& progress) : progress_(progress) {}
+  explicit ProgressCallback(const AnchorRefinementProgress& progress) : progress_(progress) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     if (progress_ && !progress_(summary.iteration)) {
       cancelled = true;
@@ -120,7 +120,7 @@ class ProgressCallback : public ceres::IterationCallback {
   bool cancelled = false;
 
  private:
-  const RefinementProgress& progress_;
+  const AnchorRefinementProgress& progress_;
 };
 
 }  // namespace
@@ -208,7 +208,7 @@ void AnchorRefinementOptions::check() const {
 
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                    const RefinementProgress& progress, const std::vector<GpsPrior>& gps) {
+                                    const AnchorRefinementProgress& progress, const std::vector<GpsPrior>& gps) {
   options.check();
   if (path.empty()) throw Error("anchor refinement: the path is empty");
   // GPS fixes on frames the path has; they align the path like anchors when there are no anchors.
@@ -301,6 +301,20 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
     r.residuals.push_back(res);
   }
   return out;
+}
+
+std::vector<GpsPrior> gps_priors_for_path(const Project& project) {
+  if (project.capture.gps_track.empty() || !project.geo.valid || project.path.empty() ||
+      !(project.capture.frame_rate > 0))
+    return {};
+  std::vector<double> times;
+  for (const PathFrame& f : project.path.frames)
+    times.push_back((project.capture.first_frame + f.index * project.capture.stride) / project.capture.frame_rate);
+  GpsMatchOptions match;
+  match.time_offset_s = project.capture.gps_time_offset_s;
+  std::vector<GpsPrior> gps = gps_priors(project.capture.gps_track, times, project.geo, match);
+  for (GpsPrior& g : gps) g.frame = project.path.frames[static_cast<std::size_t>(g.frame)].index;
+  return gps;
 }
 
 }  // namespace plenopath

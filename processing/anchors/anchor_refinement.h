@@ -13,6 +13,7 @@
 
 #include "model/anchors.h"
 #include "model/camera_path.h"
+#include "model/project.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/gps_track.h"
 
@@ -56,7 +57,7 @@ struct AnchorRefinementReport {
 
 // Called once per solver iteration with the iteration number; return false to cancel (the path then
 // comes back unchanged, report->cancelled set).
-using RefinementProgress = std::function<bool(int iteration)>;
+using AnchorRefinementProgress = std::function<bool(int iteration)>;
 
 // Needs at least one anchor (two or more to fix rotation and scale), or GPS priors on at least two frames.
 // GPS priors (processing/gps_track.h) are weak position priors with a robust loss, so a few bad fixes do
@@ -65,7 +66,12 @@ using RefinementProgress = std::function<bool(int iteration)>;
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options = {},
                                     AnchorRefinementReport* report = nullptr,
-                                    const RefinementProgress& progress = {},
+                                    const AnchorRefinementProgress& progress = {},
                                     const std::vector<GpsPrior>& gps = {});
+
+// The project's GPS fixes as priors on its path's frames (capture index in GpsPrior::frame): the capture's
+// GPS track matched by frame time and placed on the plan through the geo-anchor. Empty without a track or
+// without a valid geo-anchor.
+std::vector<GpsPrior> gps_priors_for_path(const Project& project);
 
 }  // namespace plenopath
