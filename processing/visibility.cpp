@@ -12,6 +12,7 @@
 #include "model/error.h"
 #include "processing/segment_grid.h"
 #include "processing/visibility.h"
+#include "processing/visibility_expansion.h"
 
 namespace plenopath {
 
@@ -33,6 +34,7 @@ void VisibilityOptions::check() const {
   if (!(event_merge_distance_m >= 0.0 && event_merge_distance_m <= 0.1))
     fail("event_merge_distance_m must be in [0, 0.1] m");
   if (threads < 0) fail("threads must be >= 0");
+  if (fast_area_max_steps < 0) fail("fast_area_max_steps must be >= 0 (0 = automatic)");
 }
 
 std::vector<double> VisibilityIndex::radial_function(const Eigen::Vector2d& p, int samples) const {
@@ -75,7 +77,86 @@ Eigen::Vector2d point_at(const std::vector<Eigen::Vector2d>& points, const std::
   return points[i] + t * (points[i + 1] - points[i]);
 }
 
+// Gauss-Legendre with 2 and 3 nodes on [s0, s1]; the 3-node rule is exact for polynomials of degree 5,
+// the 2-node one tells how far from that the integrand is. Refines by halving up to `depth` times.
+template <typename F>
+double integrate(const F& f, double s0, double s1, int depth) {
+  const double half = 0.5 * (s1 - s0), mid = 0.5 * (s0 + s1);
+  if (!(half > 0.0)) return 0.0;
+  const double g2 = half * (f(mid - half / std::sqrt(3.0)) + f(mid + half / std::sqrt(3.0)));
+  const double outer = half * std::sqrt(0.6);
+  const double g3 = half * (5.0 / 9.0 * (f(mid - outer) + f(mid + outer)) + 8.0 / 9.0 * f(mid));
+  if (depth <= 0 || std::abs(g3 - g2) <= 1e-7 * std::abs(g3) + 1e-12 * half) return g3;
+  return integrate(f, s0, mid, depth - 1) + integrate(f, mid, s1, depth - 1);
+}
+
 }  // namespace
+
+double VisibilityIndex::envelope_area(const Eigen::Vector2d& p) const {
+  std::vector<EnvelopeWedge> wedges;
+  return std::max(0.0, area_and_wedges(p, &wedges));
+}
+
+double VisibilityIndex::area_and_wedges(const Eigen::Vector2d& p, std::vector<EnvelopeWedge>* wedges) const {
+  wedges->clear();
+  if (classify(p) != EnvelopeStatus::ok) return -1.0;
+  if (options().area_method == AreaMethod::fast_with_exact_fallback) {
+    const WallTriangulation& tri = triangulation();
+    const long max_steps = options().fast_area_max_steps > 0
+                               ? options().fast_area_max_steps
+                               : 64 * static_cast<long>(tri.corners.size()) + 10000;
+    double area = 0.0;
+    if (expand_envelope(tri, p, max_steps, wedges, &area)) {
+      count_areas(1, 0, 0);
+      return area;
+    }
+    wedges->clear();
+  }
+  count_areas(0, 0, 1);
+  return exact_envelope_area(p);
+}
+
+void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at,
+                                 double s_begin, double s_end, double* area_mid, double* area_mean) const {
+  std::vector<EnvelopeWedge> wedges;
+  const double mid_area = area_and_wedges(point_at(points, s_at, 0.5 * (s_begin + s_end)), &wedges);
+  *area_mid = *area_mean = std::max(0.0, mid_area);
+  if (mid_area < 0.0 || !(s_end > s_begin)) return;
+  // The area elsewhere in the cell: from the middle's wedges in closed form, or (if they do not fit
+  // there, or the middle fell back to the exact class) by a query of its own.
+  std::size_t closed_form = 0;
+  std::vector<EnvelopeWedge> other;
+  auto area_at = [&](double s) {
+    const Eigen::Vector2d q = point_at(points, s_at, s);
+    double area = 0.0;
+    if (!wedges.empty() && wedges_area(triangulation(), wedges, q, false, &area)) {
+      ++closed_form;
+      return area;
+    }
+    const double a = area_and_wedges(q, &other);
+    return a >= 0.0 ? a : mid_area;
+  };
+  double integral = 0.0;
+  if (wedges.empty()) {
+    integral = integrate(area_at, s_begin, s_end, 0);  // three queries
+  } else {
+    // The area is smooth along each straight piece of the path; the pieces meet where the path turns.
+    double piece_begin = s_begin;
+    const std::size_t first = std::upper_bound(s_at.begin(), s_at.end(), s_begin) - s_at.begin();
+    for (std::size_t k = first; k + 1 < s_at.size() && s_at[k] < s_end; ++k) {
+      const Eigen::Vector2d before = points[k] - points[k - 1], after = points[k + 1] - points[k];
+      const bool straight = before.squaredNorm() > 0.0 && after.squaredNorm() > 0.0 && before.dot(after) > 0.0 &&
+                            std::abs(before.x() * after.y() - before.y() * after.x()) <=
+                                1e-12 * before.norm() * after.norm();
+      if (straight) continue;
+      integral += integrate(area_at, piece_begin, s_at[k], 10);
+      piece_begin = s_at[k];
+    }
+    integral += integrate(area_at, piece_begin, s_end, 10);
+  }
+  count_areas(0, closed_form, 0);
+  *area_mean = integral / (s_end - s_begin);
+}
 
 VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
                                                   const std::function<void(double)>& progress) const {
@@ -145,32 +226,44 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
     if (e.s > bounds.back() + options().event_merge_distance_m && e.s < total - options().event_merge_distance_m)
       bounds.push_back(e.s);
   bounds.push_back(total);
+  const bool fast = options().area_method == AreaMethod::fast_with_exact_fallback;
+  const std::size_t cell_count = bounds.size() - 1;
   auto area_at = [&](double s) -> double {
     const Eigen::Vector2d q = point_at(points, s_at, s);
-    return classify(q) == EnvelopeStatus::ok ? envelope_area(q) : -1.0;
+    return classify(q) == EnvelopeStatus::ok ? exact_envelope_area(q) : -1.0;
   };
-  // Envelope areas: at each cell's middle (and at the events for Simpson's rule), on several threads.
+  // Exact method: envelope areas at each cell's middle (and at the events for Simpson's rule). Fast
+  // method: one task per cell (its middle's expansion, then its mean area from the wedges).
   std::vector<double> queries_s;
-  for (std::size_t c = 0; c + 1 < bounds.size(); ++c) queries_s.push_back(0.5 * (bounds[c] + bounds[c + 1]));
-  if (options().area_mean_simpson) queries_s.insert(queries_s.end(), bounds.begin(), bounds.end());
+  if (!fast) {
+    for (std::size_t c = 0; c < cell_count; ++c) queries_s.push_back(0.5 * (bounds[c] + bounds[c + 1]));
+    if (options().area_mean_simpson) queries_s.insert(queries_s.end(), bounds.begin(), bounds.end());
+  }
   std::vector<double> query_area(queries_s.size(), -1.0);
+  std::vector<double> cell_mid(fast ? cell_count : 0, 0.0), cell_mean(fast ? cell_count : 0, 0.0);
+  const std::size_t tasks = fast ? cell_count : queries_s.size();
   if (options().cell_areas) {
     int threads = options().threads > 0 ? options().threads
                                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    threads = std::max(1, std::min<int>(threads, static_cast<int>(queries_s.size() / 16) + 1));
+    threads = std::max(1, std::min<int>(threads, static_cast<int>(tasks / 16) + 1));
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     auto work = [&]() {
       try {
-        for (std::size_t i = next++; i < queries_s.size(); i = next++) {
-          if (progress) progress(0.6 + 0.4 * static_cast<double>(i) / queries_s.size());
-          query_area[i] = area_at(queries_s[i]);
+        for (std::size_t i = next++; i < tasks; i = next++) {
+          if (progress) progress(0.6 + 0.4 * static_cast<double>(i) / tasks);
+          if (fast) {
+            areas_of_cell(points, s_at, bounds[i], bounds[i + 1], &cell_mid[i], &cell_mean[i]);
+          } else {
+            query_area[i] = area_at(queries_s[i]);
+            if (query_area[i] >= 0.0) count_areas(0, 0, 1);
+          }
         }
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();
-        next = queries_s.size();
+        next = tasks;
       }
     };
     std::vector<std::thread> pool;
@@ -179,16 +272,15 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
     for (auto& th : pool) th.join();
     if (failure) std::rethrow_exception(failure);
   }
-  const std::size_t cell_count = bounds.size() - 1;
   for (std::size_t c = 0; c + 1 < bounds.size(); ++c) {
     VisibilityCell cell;
     cell.s_begin = bounds[c];
     cell.s_end = bounds[c + 1];
     cell.length = cell.s_end - cell.s_begin;
-    const double mid_area = query_area[c];
+    const double mid_area = fast ? cell_mid[c] : query_area[c];
     cell.area_mid = std::max(0.0, mid_area);
-    cell.area_mean = cell.area_mid;
-    if (options().area_mean_simpson && mid_area >= 0.0) {
+    cell.area_mean = fast ? cell_mean[c] : cell.area_mid;
+    if (!fast && options().area_mean_simpson && mid_area >= 0.0) {
       const double b0 = query_area[cell_count + c], b1 = query_area[cell_count + c + 1];
       const double a0 = b0 >= 0.0 ? b0 : mid_area;
       const double a1 = b1 >= 0.0 ? b1 : mid_area;

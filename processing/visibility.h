@@ -24,6 +24,9 @@
 
 namespace plenopath {
 
+struct EnvelopeWedge;
+struct WallTriangulation;
+
 enum class EnvelopeStatus {
   ok,               // the point is in free space; polygon and area are valid
   on_wall,          // the point lies on a wall (within half the wall thickness): no envelope
@@ -41,6 +44,22 @@ struct Envelope {
 // Which CGAL visibility class answers envelope queries (the benchmark compares them).
 enum class VisibilityAlgorithm { triangular_expansion, rotational_sweep };
 
+// How envelope areas (envelope_area() and the cells' areas) are computed.
+enum class AreaMethod {
+  // Triangular expansion in doubles over a constrained triangulation of the walls (built exactly, once),
+  // checked, with the exact CGAL class as the fallback when a check fails (processing/visibility_expansion.h).
+  fast_with_exact_fallback,
+  // Always CGAL's Triangular_expansion_visibility_2 on the exact kernel.
+  exact,
+};
+
+// How many envelope areas each method answered since the index was built (benchmarks and tests).
+struct EnvelopeAreaCounts {
+  std::size_t fast = 0;         // by a fast expansion
+  std::size_t closed_form = 0;  // from a cell's wedges at another point of the cell (no expansion)
+  std::size_t exact = 0;        // by the exact CGAL class (area_method exact, or the fast path's fallback)
+};
+
 struct VisibilityOptions {
   VisibilityAlgorithm algorithm = VisibilityAlgorithm::triangular_expansion;
   // Endpoints closer than this (metres) are merged before the arrangement is built.
@@ -51,15 +70,22 @@ struct VisibilityOptions {
   double event_merge_distance_m = 1.0e-6;
   // At most this many critical lines are kept for display (the events use all of them).
   std::size_t max_critical_lines = 20000;
-  // Threads used for the per-vertex visibility polygons of cells_along_path (0 = hardware concurrency).
+  // Threads used for the per-vertex visibility polygons and the cells' areas of cells_along_path
+  // (0 = hardware concurrency).
   int threads = 0;
-  // area_mean by Simpson's rule over each cell (one extra envelope per event); false = area_mid. Off by
-  // default: query points exactly on critical lines are near-degenerate and push the exact kernel onto
-  // its slow exact path (the benchmark measured about 3x the cost of the middle queries).
+  // How envelope areas are computed. With the fast method a cell's area_mean is the mean of the envelope
+  // area over the cell (adaptive Gauss-Legendre, ~1e-7), from the wedges of its one expansion.
+  AreaMethod area_method = AreaMethod::fast_with_exact_fallback;
+  // Cap on the fast expansion's window steps per query; over it, the exact fallback answers. 0 = automatic
+  // (64 per triangle + 10 000). Tests set 1 to exercise the fallback.
+  long fast_area_max_steps = 0;
+  // With area_method exact only: area_mean by Simpson's rule over each cell (one extra envelope per event);
+  // false = area_mid. Off by default: query points exactly on critical lines are near-degenerate and push
+  // the exact kernel onto its slow exact path (the benchmark measured about 3x the cost of the middle).
   bool area_mean_simpson = false;
-  // Compute the cells' envelope areas at all. They dominate cells_along_path's cost on open plans (an
-  // envelope seen through many doors costs ~2 ms); false leaves area_mid/area_mean at 0 for a caller
-  // that fills them later (e.g. only for the cells it samples).
+  // Compute the cells' envelope areas at all (with the exact method they dominate cells_along_path's cost
+  // on open plans: an exact envelope seen through many doors costs ~2 ms, the fast one ~50 us); false
+  // leaves area_mid/area_mean at 0 for a caller that fills them later.
   bool cell_areas = true;
 
   void check() const;  // throws plenopath::Error saying which field is wrong
@@ -79,9 +105,10 @@ class VisibilityIndex {
   // The visibility polygon of p (Triangular_expansion_visibility_2, regularized).
   Envelope envelope(const Eigen::Vector2d& p) const;
   EnvelopeStatus classify(const Eigen::Vector2d& p) const;
-  // Just the envelope's area (0 unless p is in free space), from the unregularized visibility class:
-  // cheaper than envelope() where the polygon is not needed.
+  // Just the envelope's area (0 unless p is in free space): by options().area_method, i.e. by default the
+  // fast expansion with the exact unregularized CGAL class as fallback. Much cheaper than envelope().
   double envelope_area(const Eigen::Vector2d& p) const;
+  EnvelopeAreaCounts area_counts() const;
 
   // Distance from p to the first wall along the world angles k * 2*pi / samples, k = 0 .. samples-1,
   // counter-clockwise from +X (plan frame; NOT the panorama's azimuth, which grows clockwise: use
@@ -94,8 +121,10 @@ class VisibilityIndex {
   // also has an event where it crosses a wall. A cell spans [s_begin, s_end] between consecutive events
   // (the first starts at 0, the last ends at the path's length); first_frame/last_frame are the positions
   // of the first and last frame inside it, or both the frame nearest its middle if no frame falls inside.
-  // The envelope is computed once per cell (its middle; also once per event if area_mean_simpson), never
-  // per frame; those queries run on `threads` threads.
+  // The envelope is computed once per cell (at its middle), never per frame: with the fast area method the
+  // cell's mean area comes from that one expansion's wedges in closed form; with the exact method
+  // area_mean is area_mid, or Simpson's rule with one more envelope per event (area_mean_simpson). The
+  // cells run on `threads` threads; the result does not depend on their number or timing.
   // `progress` (optional) is called with the fraction done, from worker threads too; it may throw to cancel
   // (the exception reaches the caller once the workers have stopped, within a few envelope queries).
   VisibilityCells cells_along_path(const CameraPath& path,
@@ -110,6 +139,16 @@ class VisibilityIndex {
   // Windows of every plan vertex's visibility polygon: the critical lines the events come from.
   std::vector<CriticalLine> vertex_windows(const std::function<void(double fraction)>& progress = {}) const;
   const VisibilityOptions& options() const;
+  // The exact area by the unregularized CGAL class; -1 unless p is in free space.
+  double exact_envelope_area(const Eigen::Vector2d& p) const;
+  // p's envelope area by options().area_method (-1 unless p is in free space) and, when the fast path
+  // answered, its wedges (else they are left empty).
+  double area_and_wedges(const Eigen::Vector2d& p, std::vector<EnvelopeWedge>* wedges) const;
+  // The cell's area at its middle and its mean area over [s_begin, s_end] of the path polyline.
+  void areas_of_cell(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at, double s_begin,
+                  double s_end, double* area_mid, double* area_mean) const;
+  const WallTriangulation& triangulation() const;
+  void count_areas(std::size_t fast, std::size_t closed_form, std::size_t exact) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -5,9 +5,12 @@
 #include <CGAL/Arr_landmarks_point_location.h>
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Rotational_sweep_visibility_2.h>
 #include <CGAL/Triangular_expansion_visibility_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <atomic>
@@ -21,6 +24,7 @@
 #include "model/error.h"
 #include "processing/segment_grid.h"
 #include "processing/visibility.h"
+#include "processing/visibility_expansion.h"
 
 namespace plenopath {
 namespace {
@@ -39,6 +43,15 @@ using TriangularVisibility = CGAL::Triangular_expansion_visibility_2<Arrangement
 using SweepVisibility = CGAL::Rotational_sweep_visibility_2<Arrangement, CGAL::Tag_true>;
 // Unregularized: may leave needles in the output, which add no area; used where only the area counts.
 using TriangularVisibilityRaw = CGAL::Triangular_expansion_visibility_2<Arrangement, CGAL::Tag_false>;
+
+// The walls' constrained triangulation for the fast area path; vertex and face infos are indices. The
+// arrangement's edges meet only at its vertices, so no constraint intersection is ever constructed.
+using CdtVertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using CdtFaceBase =
+    CGAL::Triangulation_face_base_with_info_2<int, Kernel, CGAL::Constrained_triangulation_face_base_2<Kernel>>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
+    Kernel, CGAL::Triangulation_data_structure_2<CdtVertexBase, CdtFaceBase>,
+    CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
 enum FaceKind : int { kUnset = -1, kOutside = 0, kFree = 1, kObstacle = 2, kWallInterior = 3 };
 
@@ -101,6 +114,8 @@ struct VisibilityIndex::Impl {
   std::unique_ptr<SegmentGrid> edge_grid;  // over `edges`
   std::unique_ptr<SegmentGrid> thick_grid; // over the centre lines of thickened dangling walls
   double half_thickness = 0.005;
+  WallTriangulation triangulation;  // the walls' constrained triangulation in doubles (fast area path)
+  std::atomic<std::size_t> fast_areas{0}, closed_form_areas{0}, exact_areas{0};
 
   // One visibility object per thread: CGAL's keep mutable state. Created under the mutex because their
   // constructors attach observers to the (shared) arrangement.
@@ -119,6 +134,7 @@ struct VisibilityIndex::Impl {
 
   void build(const FloorPlan& plan);
   void classify_faces();
+  void triangulate();
   // Status of p and, when ok, the face holding it.
   EnvelopeStatus locate(const Eigen::Vector2d& p, Arrangement::Face_const_handle* face) const;
   template <typename V, typename Q>
@@ -169,6 +185,36 @@ void VisibilityIndex::Impl::build(const FloorPlan& plan) {
   thick_grid = std::make_unique<SegmentGrid>(thick_centres);
   classify_faces();
   locator = std::make_unique<Locator>(arr);
+  triangulate();
+}
+
+// The arrangement's vertices and edges as a constrained Delaunay triangulation (exact), then in doubles.
+void VisibilityIndex::Impl::triangulate() {
+  Cdt cdt;
+  std::unordered_map<const void*, Cdt::Vertex_handle> vertex_of;
+  for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) vertex_of[&*v] = cdt.insert(v->point());
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e)
+    cdt.insert_constraint(vertex_of.at(&*e->source()), vertex_of.at(&*e->target()));
+  WallTriangulation& t = triangulation;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    v->info() = static_cast<int>(t.points.size());
+    t.points.push_back(to_eigen(v->point()));
+  }
+  int faces = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = faces++;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    std::array<int, 3> corners{}, neighbours{};
+    std::array<bool, 3> walls{};
+    for (int i = 0; i < 3; ++i) {
+      corners[i] = f->vertex(i)->info();
+      neighbours[i] = cdt.is_infinite(f->neighbor(i)) ? -1 : f->neighbor(i)->info();
+      walls[i] = f->is_constrained(i);
+    }
+    t.corners.push_back(corners);
+    t.neighbours.push_back(neighbours);
+    t.walls.push_back(walls);
+  }
+  t.finish();
 }
 
 // Nesting: the unbounded face is outside; the faces of a wall component lying in an outside face are free
@@ -321,9 +367,25 @@ Envelope VisibilityIndex::envelope(const Eigen::Vector2d& p) const {
   return e;
 }
 
-double VisibilityIndex::envelope_area(const Eigen::Vector2d& p) const {
+const WallTriangulation& VisibilityIndex::triangulation() const { return impl_->triangulation; }
+
+void VisibilityIndex::count_areas(std::size_t fast, std::size_t closed_form, std::size_t exact) const {
+  impl_->fast_areas += fast;
+  impl_->closed_form_areas += closed_form;
+  impl_->exact_areas += exact;
+}
+
+EnvelopeAreaCounts VisibilityIndex::area_counts() const {
+  EnvelopeAreaCounts counts;
+  counts.fast = impl_->fast_areas;
+  counts.closed_form = impl_->closed_form_areas;
+  counts.exact = impl_->exact_areas;
+  return counts;
+}
+
+double VisibilityIndex::exact_envelope_area(const Eigen::Vector2d& p) const {
   Arrangement::Face_const_handle face;
-  if (impl_->locate(p, &face) != EnvelopeStatus::ok) return 0.0;
+  if (impl_->locate(p, &face) != EnvelopeStatus::ok) return -1.0;
   const auto polygon = impl_->visibility_polygon(impl_->visibility_for_this_thread(&impl_->triangular_raw),
                                                  Point(p.x(), p.y()), face);
   double twice = 0.0;
@@ -370,11 +432,12 @@ std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<vo
   int threads = impl.options.threads > 0 ? impl.options.threads
                                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::max(1, std::min<int>(threads, static_cast<int>(wedges.size() / 64) + 1));
-  std::vector<std::vector<CriticalLine>> per_thread(threads);
+  // One list per wedge, joined in wedge order: the result does not depend on the threads' timing.
+  std::vector<std::vector<CriticalLine>> per_wedge(wedges.size());
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
-  auto work = [&](int t) {
+  auto work = [&]() {
     try {
       auto& vis = impl.visibility_for_this_thread(&impl.triangular);
       for (std::size_t i = next++; i < wedges.size(); i = next++) {
@@ -396,7 +459,7 @@ std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<vo
           const bool a_nearer = (a - v).squaredNorm() <= (b - v).squaredNorm();
           line.a = a_nearer ? a : b;
           line.b = a_nearer ? b : a;
-          per_thread[t].push_back(line);
+          per_wedge[i].push_back(line);
         }
       }
     } catch (...) {
@@ -406,15 +469,15 @@ std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<vo
     }
   };
   if (threads == 1) {
-    work(0);
+    work();
   } else {
     std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work, t);
+    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
     for (auto& th : pool) th.join();
   }
   if (failure) std::rethrow_exception(failure);
   std::vector<CriticalLine> out;
-  for (auto& lines : per_thread) out.insert(out.end(), lines.begin(), lines.end());
+  for (auto& lines : per_wedge) out.insert(out.end(), lines.begin(), lines.end());
   return out;
 }
 

@@ -1,12 +1,16 @@
 // Visibility speed on a 1 000-segment plan: envelope query median for Triangular_expansion_visibility_2
-// and Rotational_sweep_visibility_2 (target <= 300 us), and events + cells along a 10 000-frame path
-// (target <= 2 s). Prints one JSON object.
+// and Rotational_sweep_visibility_2 (target <= 300 us), the fast area path (triangular expansion in doubles,
+// exact fallback) against the exact class, and events + cells with areas along a 10 000-frame path
+// (target <= 2 s), with how many expansions per cell and how far the fast areas are from the exact ones.
+// `--with-exact` also times cells_along_path with AreaMethod::exact (the previous method, ~7 s CPU).
+// Prints one JSON object.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cmath>
 #include <iostream>
+#include <cstring>
 #include <random>
 
 #include "processing/visibility.h"
@@ -136,7 +140,8 @@ std::vector<Eigen::Vector2d> free_points(const VisibilityIndex& index, std::mt19
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const bool with_exact = argc > 1 && std::strcmp(argv[1], "--with-exact") == 0;
   std::mt19937 rng(1);
   const FloorPlan plan = offices(&rng);
   VisibilityOptions tri_options;
@@ -168,13 +173,42 @@ int main() {
     area_only_us.push_back(thread_cpu_us() - c0);
   }
   const double corridor_area_only_us = median(area_only_us);
+  VisibilityOptions exact_options;
+  exact_options.area_method = AreaMethod::exact;
+  const VisibilityIndex exact(plan, exact_options);
+  std::vector<double> exact_area_us;
+  double exact_area_sum = 0.0;
+  exact.envelope_area(corridor.front());
+  for (const auto& p : corridor) {
+    const double c0 = thread_cpu_us();
+    exact_area_sum += exact.envelope_area(p);
+    exact_area_us.push_back(thread_cpu_us() - c0);
+  }
+  const double corridor_exact_area_us = median(exact_area_us);
+  // Fast against exact areas at the random free points.
+  double fast_max_rel = 0.0;
+  std::vector<double> fast_us;
+  for (const auto& p : points) {
+    const double c0 = thread_cpu_us();
+    const double a = tri.envelope_area(p);
+    fast_us.push_back(thread_cpu_us() - c0);
+    const double b = exact.envelope_area(p);
+    fast_max_rel = std::max(fast_max_rel, std::abs(a - b) / b);
+  }
 
   // Stress case: an open hall with 250 free-standing pillars (many holes: the triangular expansion's
   // query time grows with them).
   const FloorPlan hall_plan = hall(&rng);
   const VisibilityIndex hall_index(hall_plan);
   double hall_area = 0.0;
-  const double hall_us = median(time_queries(hall_index, free_points(hall_index, &rng, {100, 60}, 200), &hall_area));
+  const auto hall_points = free_points(hall_index, &rng, {100, 60}, 200);
+  const double hall_us = median(time_queries(hall_index, hall_points, &hall_area));
+  std::vector<double> hall_fast_us;
+  for (const auto& p : hall_points) {
+    const double c0 = thread_cpu_us();
+    hall_index.envelope_area(p);
+    hall_fast_us.push_back(thread_cpu_us() - c0);
+  }
 
   // 10 000 frames: along the corridor and back, then into and out of a room.
   const CameraPath path = polyline_path({{1, 20.5}, {119, 20.5}, {119, 19.5}, {61.5, 19.5}, {61.5, 12}, {61.5, 19.5},
@@ -187,11 +221,48 @@ int main() {
   const VisibilityCells events_only_cells = events_only.cells_along_path(path);
   const double events_only_s = std::chrono::duration<double>(Clock::now() - t0).count();
   const double events_only_cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  const EnvelopeAreaCounts counts_before = tri.area_counts();
   t0 = Clock::now();
   c0 = std::clock();
   const VisibilityCells cells = tri.cells_along_path(path);
   const double events_s = std::chrono::duration<double>(Clock::now() - t0).count();
   const double events_cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  const EnvelopeAreaCounts counts_after = tri.area_counts();
+  const std::size_t expansions = counts_after.fast - counts_before.fast;
+  const std::size_t fallbacks = counts_after.exact - counts_before.exact;
+  const std::size_t closed_forms = counts_after.closed_form - counts_before.closed_form;
+  const bool repeatable = tri.cells_along_path(path) == cells;
+  // The cells' areas against the exact class: area_mid at every 10th cell; area_mean at every 100th
+  // against Simpson's rule over 16 exact envelopes.
+  const std::vector<double> s_at = path.arc_lengths();
+  auto point_at = [&](double s) {
+    std::size_t i = std::upper_bound(s_at.begin(), s_at.end(), s) - s_at.begin();
+    i = std::clamp<std::size_t>(i, 1, s_at.size() - 1);
+    const double t = (s - s_at[i - 1]) / std::max(1e-300, s_at[i] - s_at[i - 1]);
+    return Eigen::Vector2d(path.frames[i - 1].position() + t * (path.frames[i].position() - path.frames[i - 1].position()));
+  };
+  double mid_max_rel = 0.0, mean_max_rel = 0.0, mean_vs_mid_max_rel = 0.0;
+  for (std::size_t c = 0; c < cells.cells.size(); c += 10) {
+    const auto& cell = cells.cells[c];
+    const double truth = exact.envelope_area(point_at(0.5 * (cell.s_begin + cell.s_end)));
+    if (truth > 0) mid_max_rel = std::max(mid_max_rel, std::abs(cell.area_mid - truth) / truth);
+    if (cell.area_mid > 0) mean_vs_mid_max_rel = std::max(mean_vs_mid_max_rel, std::abs(cell.area_mean - cell.area_mid) / cell.area_mid);
+    if (c % 100 != 0) continue;
+    double simpson = 0.0;
+    for (int k = 0; k <= 16; ++k)
+      simpson += (k == 0 || k == 16 ? 1 : (k % 2 ? 4 : 2)) *
+                 exact.envelope_area(point_at(cell.s_begin + (cell.s_end - cell.s_begin) * k / 16.0));
+    simpson /= 48.0;
+    if (simpson > 0) mean_max_rel = std::max(mean_max_rel, std::abs(cell.area_mean - simpson) / simpson);
+  }
+  double exact_s = 0.0, exact_cpu_s = 0.0;
+  if (with_exact) {
+    t0 = Clock::now();
+    c0 = std::clock();
+    const VisibilityCells exact_cells = exact.cells_along_path(path);
+    exact_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    exact_cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  }
 
   std::cout << "{\"benchmark\": \"visibility\", \"segments\": " << plan.segments.size()
             << ", \"arrangement_vertices\": " << tri.vertices().size() << ", \"build_s\": " << build_s
@@ -203,16 +274,27 @@ int main() {
             << ", \"envelope_target_us\": 300, \"envelope_target_met\": " << (tri_us <= 300 ? "true" : "false")
             << ", \"corridor_envelope_median_cpu_us\": " << corridor_us
             << ", \"corridor_area_only_median_cpu_us\": " << corridor_area_only_us
-            << ", \"area_only_agrees\": " << (std::abs(area_only_sum - corridor_area) <= 1e-6 * corridor_area ? "true" : "false")
+ << ", \"corridor_exact_area_median_cpu_us\": " << corridor_exact_area_us
+            << ", \"area_only_agrees\": " << (std::abs(area_only_sum - corridor_area) <= 1e-6 * corridor_area &&
+                                         std::abs(exact_area_sum - corridor_area) <= 1e-6 * corridor_area ? "true" : "false")
+            << ", \"fast_area_median_cpu_us\": " << median(fast_us) << ", \"fast_area_max_rel_diff_vs_exact\": " << fast_max_rel
             << ", \"pillar_hall\": {\"segments\": " << hall_plan.segments.size()
-            << ", \"envelope_median_cpu_us\": " << hall_us << "}"
+            << ", \"envelope_median_cpu_us\": " << hall_us
+            << ", \"fast_area_median_cpu_us\": " << median(hall_fast_us) << "}"
             << ", \"path_frames\": " << path.size() << ", \"path_length_m\": " << path.length()
             << ", \"events\": " << cells.events.size() << ", \"cells\": " << cells.cells.size()
             << ", \"critical_lines\": " << cells.critical_lines.size() << ", \"events_wall_s\": " << events_s
-            << ", \"events_cpu_s\": " << events_cpu_s << ", \"events_without_areas_wall_s\": " << events_only_s
+            << ", \"events_cpu_s\": " << events_cpu_s << ", \"expansions\": " << expansions
+            << ", \"exact_fallbacks\": " << fallbacks << ", \"closed_form_areas\": " << closed_forms
+            << ", \"area_mid_max_rel_diff_vs_exact\": " << mid_max_rel
+            << ", \"area_mean_max_rel_diff_vs_exact_simpson16\": " << mean_max_rel
+            << ", \"area_mean_vs_mid_max_rel\": " << mean_vs_mid_max_rel
+            << ", \"repeatable\": " << (repeatable ? "true" : "false") << ", \"events_without_areas_wall_s\": " << events_only_s
             << ", \"events_without_areas_cpu_s\": " << events_only_cpu_s
             << ", \"same_events\": " << (same_events(events_only_cells, cells) ? "true" : "false")
             << ", \"events_target_s\": 2, \"events_target_met_with_areas\": " << (events_s <= 2.0 ? "true" : "false")
-            << ", \"events_target_met_without_areas\": " << (events_only_s <= 2.0 ? "true" : "false") << "}\n";
+            << ", \"events_target_met_without_areas\": " << (events_only_s <= 2.0 ? "true" : "false");
+  if (with_exact) std::cout << ", \"exact_method_wall_s\": " << exact_s << ", \"exact_method_cpu_s\": " << exact_cpu_s;
+  std::cout << "}\n";
   return 0;
 }
