@@ -62,7 +62,7 @@ constexpr double kPathZ = 0.01;
 constexpr double kKeyframeZ = 0.02;
 constexpr double kResidualZ = 0.025;
 constexpr double kCurrentZ = 0.03;
-constexpr double kAnchorZ = 0.04;
+constexpr double kAnchorZ = 0.5;  // well above the current-frame sphere, whose depth bulges toward the camera
 
 // How close (pixels) a press must be to a frame or an anchor marker, and a plan corner to snap to.
 constexpr double kPickRadiusPx = 12.0;

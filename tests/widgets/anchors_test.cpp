@@ -1,0 +1,311 @@
+// Drift anchors in the studio: a Ctrl+drag on the map anchors a frame and bends the path (live preview,
+// one undo step), Shift snaps to a plan corner, the Anchors panel lists, edits and deletes anchors with
+// residuals, and Refine with anchors runs as an undoable task. The test project's path is straight
+// (x = 1..7 at y = 3.5, 30 frames), so the expected bends are computed by hand below.
+#include <QAction>
+#include <QApplication>
+#include <QMouseEvent>
+#include <QTableWidget>
+#include <QTest>
+#include <QToolButton>
+#include <QUndoStack>
+#include <cmath>
+#include <gtest/gtest.h>
+
+#include "app/studio/main_window.h"
+#include "tests/widgets/test_project.h"
+#include "tests/widgets/wait_until.h"
+#include "widgets/anchors_panel.h"
+#include "widgets/document_commands.h"
+#include "widgets/map_view.h"
+#include "widgets/project_document.h"
+#include "widgets/task_runner.h"
+
+namespace plenopath {
+namespace {
+
+using studio::MainWindow;
+using test::test_project;
+
+struct Studio {
+  MainWindow window;
+  Studio() {
+    window.ask_recovery = [](const QString&) { return false; };
+    window.ask_save_changes = [] { return QMessageBox::Discard; };
+    window.show_error = [this](const QString& title, const QString& message) { errors << title + ": " + message; };
+    window.resize(1400, 900);
+    window.show();
+    EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
+  }
+  QStringList errors;
+};
+
+void send_mouse(QWidget* widget, QEvent::Type type, QPoint pixel, Qt::MouseButtons buttons,
+                Qt::KeyboardModifiers modifiers) {
+  QMouseEvent event(type, QPointF(pixel), QPointF(widget->mapToGlobal(pixel)),
+                    type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton, buttons, modifiers);
+  QApplication::sendEvent(widget, &event);
+}
+
+// Press at `from`, move there in `steps` steps, release at `to`, holding `modifiers` all along.
+void drag(QWidget* widget, QPoint from, QPoint to, Qt::KeyboardModifiers modifiers, int steps = 8,
+          const std::function<void()>& before_release = {}) {
+  send_mouse(widget, QEvent::MouseButtonPress, from, Qt::LeftButton, modifiers);
+  for (int k = 1; k <= steps; ++k)
+    send_mouse(widget, QEvent::MouseMove, from + (to - from) * k / steps, Qt::LeftButton, modifiers);
+  if (before_release) before_release();
+  send_mouse(widget, QEvent::MouseButtonRelease, to, Qt::NoButton, modifiers);
+}
+
+double metres_per_pixel(widgets::MapView* map) {
+  return (map->plan_point_at(QPoint(100, 100)) - map->plan_point_at(QPoint(101, 100))).norm();
+}
+
+bool is_anchor_colour(QRgb c) {  // the markers' and residual lines' magenta (209, 0, 140)
+  return qRed(c) > 150 && qGreen(c) < 80 && qBlue(c) > 90 && qBlue(c) < 190;
+}
+
+template <typename Predicate>
+int count_near(const QImage& image, QPoint centre, int radius, Predicate predicate) {
+  int n = 0;
+  for (int y = centre.y() - radius; y <= centre.y() + radius; ++y)
+    for (int x = centre.x() - radius; x <= centre.x() + radius; ++x)
+      if (image.valid(x, y) && predicate(image.pixel(x, y))) ++n;
+  return n;
+}
+
+QAction* action_named(MainWindow& window, const QString& text) {
+  for (QAction* a : window.findChildren<QAction*>())
+    if (a->text() == text) return a;
+  return nullptr;
+}
+
+TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::MapView* map = s.window.map_view();
+  widgets::ProjectDocument& doc = s.window.document();
+  map->render_now();
+  const CameraPath original = doc.project().path;
+  const double tolerance = 1.5 * metres_per_pixel(map);  // where a drag can put a point
+  ASSERT_LT(tolerance, 0.05);
+
+  // A plain drag from a frame pans the map: no anchor.
+  drag(map, map->widget_pixel_of({4.0, 3.5}), map->widget_pixel_of({4.0, 3.0}), Qt::NoModifier);
+  EXPECT_TRUE(doc.project().anchors.empty());
+  EXPECT_EQ(doc.undo_stack()->count(), 0);
+  map->reset_camera();
+  map->render_now();
+
+  // First anchor: frame 0 half a metre south. One anchor is a translation of the whole path.
+  bool previewed = false;
+  drag(map, map->widget_pixel_of({1.0, 3.5}), map->widget_pixel_of({1.0, 3.0}), Qt::ControlModifier, 8, [&] {
+    // While dragging: the preview moves, the document does not.
+    previewed = map->is_dragging_anchor() && std::abs(map->anchor_preview().frames[29].y - 3.0) < tolerance &&
+                doc.project().path == original;
+  });
+  EXPECT_TRUE(previewed);
+  EXPECT_FALSE(map->is_dragging_anchor());
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  EXPECT_EQ(doc.project().anchors[0].frame, 0);
+  EXPECT_LT((doc.project().anchors[0].position - Eigen::Vector2d(1.0, 3.0)).norm(), tolerance);
+  const CameraPath after_first = doc.project().path;
+  for (std::size_t i = 0; i < after_first.size(); ++i) {
+    EXPECT_NEAR(after_first.frames[i].x - original.frames[i].x, after_first.frames[0].x - original.frames[0].x, 1e-9);
+    EXPECT_NEAR(after_first.frames[i].y, 3.0, tolerance) << "frame " << i;
+  }
+  EXPECT_EQ(doc.undo_stack()->count(), 1);
+
+  // Second anchor: frame 29 (now at about (7, 3)) one metre further south. Between the anchors the path turns
+  // and stretches about frame 0: frame i moves by i/29 m (hand-computed for the straight path), so frames
+  // near the dragged one move most and those near the other anchor hardly at all.
+  map->render_now();
+  drag(map, map->widget_pixel_of(after_first.frames[29].position()),
+       map->widget_pixel_of(after_first.frames[29].position() - Eigen::Vector2d(0, 1.0)), Qt::ControlModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 2u);
+  const CameraPath bent = doc.project().path;
+  EXPECT_LT((bent.frames[29].position() - doc.project().anchors[1].position).norm(), 1e-6) << "on its anchor";
+  EXPECT_LT((bent.frames[0].position() - doc.project().anchors[0].position).norm(), 1e-6) << "first anchor kept";
+  std::vector<double> moved;
+  for (std::size_t i = 0; i < bent.size(); ++i) {
+    moved.push_back((bent.frames[i].position() - after_first.frames[i].position()).norm());
+    EXPECT_NEAR(moved[i], i / 29.0, 2 * tolerance) << "frame " << i;
+  }
+  EXPECT_GT(moved[28], 0.9);
+  EXPECT_LT(moved[2], 0.1);
+
+  // The anchors are drawn: magenta markers at both.
+  map->render_now();
+  const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  for (const Anchor& a : doc.project().anchors)
+    EXPECT_GT(count_near(image, map->widget_pixel_of(a.position), 4, is_anchor_colour), 10) << "frame " << a.frame;
+
+  // Undo restores the path and the anchors, step by step; redo brings them back.
+  EXPECT_EQ(doc.undo_stack()->count(), 2);
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().path, after_first);
+  EXPECT_EQ(doc.project().anchors.size(), 1u);
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().path, original);
+  EXPECT_TRUE(doc.project().anchors.empty());
+  doc.undo_stack()->redo();
+  doc.undo_stack()->redo();
+  EXPECT_EQ(doc.project().path, bent);
+}
+
+TEST(Anchors, DraggingAnAnchorMarkerMovesItAndShiftSnapsToAPlanCorner) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::MapView* map = s.window.map_view();
+  widgets::ProjectDocument& doc = s.window.document();
+  map->render_now();
+  // Ctrl+Shift drag frame 15 (4.1, 3.5) to 3 pixels off the half wall's end (4, 2.5): it snaps there exactly.
+  const int frame = 15;
+  const QPoint corner = map->widget_pixel_of({4.0, 2.5});
+  drag(map, map->widget_pixel_of(doc.project().path.frames[frame].position()), corner + QPoint(3, -2),
+       Qt::ControlModifier | Qt::ShiftModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  EXPECT_EQ(doc.project().anchors[0].frame, frame);
+  EXPECT_EQ(doc.project().anchors[0].position, Eigen::Vector2d(4.0, 2.5));
+  EXPECT_EQ(doc.project().path.frames[frame].position(), Eigen::Vector2d(4.0, 2.5));
+  // A plain drag on the marker moves the same anchor (no new one); Esc in the middle of a drag cancels.
+  map->render_now();
+  drag(map, corner, map->widget_pixel_of({5.0, 2.0}), Qt::NoModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  EXPECT_LT((doc.project().anchors[0].position - Eigen::Vector2d(5.0, 2.0)).norm(), 1.5 * metres_per_pixel(map));
+  EXPECT_EQ(doc.undo_stack()->count(), 2);
+  const Project before = doc.project();
+  map->render_now();
+  drag(map, map->widget_pixel_of({5.0, 2.0}), map->widget_pixel_of({6.0, 1.0}), Qt::NoModifier, 4,
+       [&] { QTest::keyClick(map, Qt::Key_Escape); });
+  EXPECT_EQ(doc.project(), before);
+  EXPECT_EQ(doc.undo_stack()->count(), 2);
+  EXPECT_FALSE(map->toolTip().isEmpty());
+}
+
+TEST(Anchors, PanelListsEditsAndDeletesAnchorsWithResiduals) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::ProjectDocument& doc = s.window.document();
+  widgets::AnchorsPanel* panel = s.window.anchors_panel();
+  ASSERT_NE(panel, nullptr);
+  QTableWidget* table = panel->table();
+  const CameraPath original = doc.project().path;
+
+  // Anchors as read from a file: frame 0 on the path, frame 29 half a metre south of it.
+  Project with_anchors = doc.snapshot();
+  with_anchors.anchors = {{0, {1.0, 3.5}, std::nullopt}, {29, {7.0, 3.0}, std::nullopt}};
+  doc.undo_stack()->push(new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
+  ASSERT_EQ(table->rowCount(), 2);
+  EXPECT_EQ(table->item(0, widgets::AnchorsPanel::kFrameColumn)->text(), "0");
+  EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kFrameColumn)->text(), "29");
+  EXPECT_EQ(table->item(0, widgets::AnchorsPanel::kResidualColumn)->text(), "0.000");
+  EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kResidualColumn)->text(), "0.500");
+  EXPECT_TRUE(panel->summary().contains("0.500")) << panel->summary().toStdString();
+
+  // The residual is drawn on the map: a magenta line from the anchor (7, 3) to its frame (7, 3.5).
+  widgets::MapView* map = s.window.map_view();
+  map->render_now();
+  const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  EXPECT_GT(count_near(image, map->widget_pixel_of({7.0, 3.25}), 2, is_anchor_colour), 2);
+
+  // Selecting a row goes to that frame.
+  table->selectRow(1);
+  EXPECT_EQ(doc.current_position(), 29);
+
+  // Editing y moves the anchor and bends the path onto it: one undo step.
+  const int steps = doc.undo_stack()->count();
+  table->item(1, widgets::AnchorsPanel::kYColumn)->setText("2.5");
+  ASSERT_EQ(doc.project().anchors.size(), 2u);
+  EXPECT_EQ(doc.project().anchors[1].position, Eigen::Vector2d(7.0, 2.5));
+  EXPECT_LT((doc.project().path.frames[29].position() - Eigen::Vector2d(7.0, 2.5)).norm(), 1e-9);
+  EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kResidualColumn)->text(), "0.000");
+  EXPECT_EQ(doc.undo_stack()->count(), steps + 1);
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().anchors[1].position, Eigen::Vector2d(7.0, 3.0));
+  EXPECT_EQ(doc.project().path, original);
+  EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kYColumn)->text(), "3.000");
+
+  // A heading: stored in radians, the path does not move.
+  table->item(0, widgets::AnchorsPanel::kHeadingColumn)->setText("90");
+  ASSERT_TRUE(doc.project().anchors[0].heading.has_value());
+  EXPECT_NEAR(*doc.project().anchors[0].heading, M_PI / 2, 1e-12);
+  EXPECT_EQ(doc.project().path, original);
+
+  // Bad input is refused with a message and the cell shows the document's value again; no undo step.
+  const int before_bad = doc.undo_stack()->count();
+  table->item(1, widgets::AnchorsPanel::kXColumn)->setText("east");
+  QTest::qWait(20);
+  EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kXColumn)->text(), "7.000");
+  EXPECT_TRUE(panel->summary().contains("east")) << panel->summary().toStdString();
+  table->item(1, widgets::AnchorsPanel::kFrameColumn)->setText("99");
+  QTest::qWait(20);
+  EXPECT_TRUE(panel->summary().contains("99")) << panel->summary().toStdString();
+  table->item(1, widgets::AnchorsPanel::kFrameColumn)->setText("0");
+  QTest::qWait(20);
+  EXPECT_TRUE(panel->summary().contains("already")) << panel->summary().toStdString();
+  EXPECT_EQ(doc.undo_stack()->count(), before_bad);
+
+  // Moving the anchor to another frame.
+  table->item(1, widgets::AnchorsPanel::kFrameColumn)->setText("20");
+  ASSERT_EQ(doc.project().anchors.size(), 2u);
+  EXPECT_EQ(doc.project().anchors[1].frame, 20);
+  EXPECT_LT((doc.project().path.frames[20].position() - Eigen::Vector2d(7.0, 3.0)).norm(), 1e-9);
+  doc.undo_stack()->undo();
+
+  // Del removes the selected anchor (the path stays); the button does the same; undo brings it back.
+  table->setFocus();
+  table->selectRow(1);
+  QTest::keyClick(table, Qt::Key_Delete);
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  EXPECT_EQ(doc.project().anchors[0].frame, 0);
+  EXPECT_EQ(table->rowCount(), 1);
+  table->selectRow(0);
+  panel->delete_button()->click();
+  EXPECT_TRUE(doc.project().anchors.empty());
+  doc.undo_stack()->undo();
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().anchors.size(), 2u);
+  EXPECT_EQ(doc.project().path, original);
+}
+
+TEST(Anchors, RefineWithAnchorsIsATaskAndOneUndoStep) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::ProjectDocument& doc = s.window.document();
+  QAction* refine = action_named(s.window, "Refine path with &anchors");
+  ASSERT_NE(refine, nullptr);
+  EXPECT_FALSE(refine->isEnabled()) << "no anchors yet";
+  const CameraPath original = doc.project().path;
+  // Anchors on its ends say the path really ran north along x = 4 from y = 1 to y = 4: the refinement turns
+  // and shrinks the straight 6 m path onto that line, frame i at y = 1 + 3 i / 29.
+  Project with_anchors = doc.snapshot();
+  with_anchors.anchors = {{0, {4.0, 1.0}, std::nullopt}, {29, {4.0, 4.0}, std::nullopt}};
+  doc.undo_stack()->push(new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
+  ASSERT_TRUE(refine->isEnabled());
+  const int steps = doc.undo_stack()->count();
+  refine->trigger();
+  EXPECT_TRUE(s.window.tasks().is_running());
+  s.window.tasks().wait();
+  ASSERT_TRUE(s.errors.isEmpty()) << s.errors.join("\n").toStdString();
+  const CameraPath& refined = doc.project().path;
+  EXPECT_LT((refined.frames[0].position() - Eigen::Vector2d(4.0, 1.0)).norm(), 0.05);
+  EXPECT_LT((refined.frames[29].position() - Eigen::Vector2d(4.0, 4.0)).norm(), 0.05);
+  // A straight path stays straight: frame i at y = 1 + 3 i / 29 on x = 4, heading north.
+  for (int i : {7, 15, 22}) {
+    EXPECT_NEAR(refined.frames[i].x, 4.0, 0.05) << i;
+    EXPECT_NEAR(refined.frames[i].y, 1.0 + 3.0 * i / 29, 0.05) << i;
+    EXPECT_NEAR(refined.frames[i].heading, M_PI / 2, 0.02) << i;
+  }
+  EXPECT_EQ(doc.undo_stack()->count(), steps + 1);
+  EXPECT_LT(s.window.anchors_panel()->table()->item(1, widgets::AnchorsPanel::kResidualColumn)->text().toDouble(), 0.05);
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().path, original);
+}
+
+}  // namespace
+}  // namespace plenopath
