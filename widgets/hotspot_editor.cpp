@@ -483,8 +483,11 @@ void HotspotEditor::paint(QPainter& painter) {
     if (h.kind == HotspotKind::kMovieTexture && s.corners.size() == 4 && !view_.equirect_mode() && !h.media.empty()) {
       const QImage& image = media_image(h.media);
       QTransform transform;
-      if (!image.isNull() &&
-          QTransform::quadToQuad(QPolygonF(QRectF(0, 0, image.width(), image.height())), polygon, transform)) {
+      // Media corners in the order of the quad's: (0, 0), (w, 0), (w, h), (0, h) (four points: QPolygonF(QRectF)
+      // would close the ring with a fifth, which quadToQuad refuses).
+      const QPolygonF media_corners({QPointF(0, 0), QPointF(image.width(), 0), QPointF(image.width(), image.height()),
+                                     QPointF(0, image.height())});
+      if (!image.isNull() && QTransform::quadToQuad(media_corners, polygon, transform)) {
         painter.save();
         painter.setTransform(transform, true);
         painter.drawImage(QPointF(0, 0), image);
