@@ -78,16 +78,17 @@ Eigen::Vector2d point_at(const std::vector<Eigen::Vector2d>& points, const std::
 }
 
 // Gauss-Legendre with 2 and 3 nodes on [s0, s1]; the 3-node rule is exact for polynomials of degree 5,
-// the 2-node one tells how far from that the integrand is. Refines by halving up to `depth` times.
-template <typename F>
-double integrate(const F& f, double s0, double s1, int depth) {
+// the 2-node one tells how far from that the integrand is. Refines by halving up to `depth` times while
+// may_refine() says so.
+template <typename F, typename R>
+double integrate(const F& f, double s0, double s1, int depth, const R& may_refine) {
   const double half = 0.5 * (s1 - s0), mid = 0.5 * (s0 + s1);
   if (!(half > 0.0)) return 0.0;
   const double g2 = half * (f(mid - half / std::sqrt(3.0)) + f(mid + half / std::sqrt(3.0)));
   const double outer = half * std::sqrt(0.6);
   const double g3 = half * (5.0 / 9.0 * (f(mid - outer) + f(mid + outer)) + 8.0 / 9.0 * f(mid));
-  if (depth <= 0 || std::abs(g3 - g2) <= 1e-7 * std::abs(g3) + 1e-12 * half) return g3;
-  return integrate(f, s0, mid, depth - 1) + integrate(f, mid, s1, depth - 1);
+  if (depth <= 0 || std::abs(g3 - g2) <= 1e-7 * std::abs(g3) + 1e-12 * half || !may_refine()) return g3;
+  return integrate(f, s0, mid, depth - 1, may_refine) + integrate(f, mid, s1, depth - 1, may_refine);
 }
 
 }  // namespace
@@ -124,7 +125,7 @@ void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points, 
   if (mid_area < 0.0 || !(s_end > s_begin)) return;
   // The area elsewhere in the cell: from the middle's wedges in closed form, or (if they do not fit
   // there, or the middle fell back to the exact class) by a query of its own.
-  std::size_t closed_form = 0;
+  std::size_t closed_form = 0, queries = 0;
   std::vector<EnvelopeWedge> other;
   auto area_at = [&](double s) {
     const Eigen::Vector2d q = point_at(points, s_at, s);
@@ -133,26 +134,30 @@ void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points, 
       ++closed_form;
       return area;
     }
+    ++queries;
     const double a = area_and_wedges(q, &other);
     return a >= 0.0 ? a : mid_area;
   };
+  // Refinement is cheap in closed form; a cell whose wedges keep missing stops refining (a bounded cost).
+  auto may_refine = [&]() { return queries < 8; };
   double integral = 0.0;
   if (wedges.empty()) {
-    integral = integrate(area_at, s_begin, s_end, 0);  // three queries
+    integral = integrate(area_at, s_begin, s_end, 0, may_refine);  // three queries
   } else {
     // The area is smooth along each straight piece of the path; the pieces meet where the path turns.
+    // (If the wedges keep missing, the rest of the cell is one piece.)
     double piece_begin = s_begin;
     const std::size_t first = std::upper_bound(s_at.begin(), s_at.end(), s_begin) - s_at.begin();
-    for (std::size_t k = first; k + 1 < s_at.size() && s_at[k] < s_end; ++k) {
+    for (std::size_t k = first; k + 1 < s_at.size() && s_at[k] < s_end && may_refine(); ++k) {
       const Eigen::Vector2d before = points[k] - points[k - 1], after = points[k + 1] - points[k];
       const bool straight = before.squaredNorm() > 0.0 && after.squaredNorm() > 0.0 && before.dot(after) > 0.0 &&
                             std::abs(before.x() * after.y() - before.y() * after.x()) <=
                                 1e-12 * before.norm() * after.norm();
       if (straight) continue;
-      integral += integrate(area_at, piece_begin, s_at[k], 10);
+      integral += integrate(area_at, piece_begin, s_at[k], 10, may_refine);
       piece_begin = s_at[k];
     }
-    integral += integrate(area_at, piece_begin, s_end, 10);
+    integral += integrate(area_at, piece_begin, s_end, 10, may_refine);
   }
   count_areas(0, closed_form, 0);
   *area_mean = integral / (s_end - s_begin);
