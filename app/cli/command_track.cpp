@@ -1,5 +1,7 @@
 // `plenopath track --capture DIR|VIDEO [--first N] [--last M] [--stride K] [--camera-height M]
-// [--out PATH.json] [--json]`: the camera path from the panoramas alone (processing/egomotion/egomotion.h).
+// [--anchors ANCHORS.json] [--out PATH.json] [--json]`: the camera path from the panoramas alone
+// (processing/egomotion/egomotion.h); with --anchors, then aligned to the anchors and refined with them as
+// priors (processing/anchors/anchor_refinement.h), which puts it on the plan.
 // Progress goes to stderr. Frame indices (path file, --known-distance, --first/--last) are positions in the
 // whole capture: the natural order of the folder's image files, or the video's frame numbers.
 #include <algorithm>
@@ -12,8 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "model/anchors_io.h"
 #include "model/error.h"
 #include "model/path_io.h"
+#include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/frame_source.h"
 
@@ -68,6 +72,7 @@ Command add_track_command(CLI::App& parent) {
     int last = -1;
     int stride = 1;
     std::vector<double> known_distance;  // frame a, frame b, metres
+    std::string anchors;                 // anchors file: the path is refined onto them after tracking
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub = parent.add_subcommand("track", "Recover the camera path (x, y, heading per frame) from the panoramas");
@@ -84,6 +89,9 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--last", options->last, "Last frame tracked, inclusive (default: the capture's last)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--stride", options->stride, "Track every K-th frame from --first on")->check(CLI::PositiveNumber);
+  sub->add_option("--anchors", options->anchors,
+                  "Anchors file [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...] (plan metres): after tracking, "
+                  "align the path to them and refine it with them as priors (corrects drift, puts it on the plan)");
   sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
   sub->add_option("--work-width", options->work_width, "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
@@ -100,6 +108,16 @@ Command add_track_command(CLI::App& parent) {
             std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
             const int n = source->frame_count();
             const std::vector<int> positions = capture_positions(*source);
+            // Anchors are read and checked before the long tracking run.
+            Anchors anchors;
+            if (!options->anchors.empty()) {
+              anchors = read_anchors_file(options->anchors);
+              if (anchors.empty()) throw Error(options->anchors + ": no anchors in the file");
+              for (const Anchor& a : anchors)
+                if (std::find(positions.begin(), positions.end(), a.frame) == positions.end())
+                  throw Error(options->anchors + ": anchor on frame " + std::to_string(a.frame) +
+                              ", which is not among the tracked frames (see --first, --last, --stride)");
+            }
             EgomotionOptions eo;
             eo.camera_height_m = options->camera_height;
             eo.klt.work_width = options->work_width;
@@ -134,6 +152,19 @@ Command add_track_command(CLI::App& parent) {
               r.path.frames[i].index = positions[i];
               if (source->kind() == CaptureKind::kImageFolder) r.path.frames[i].file = source->frame_name(i);
             }
+            AnchorRefinementReport anchor_report;
+            if (!anchors.empty()) {
+              if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
+              r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report);
+              // Two anchors or more fix the scale too.
+              if (anchors.size() >= 2) r.path.scale_source = r.scale_source = "anchors";
+            }
+            double worst_residual = 0.0;
+            nlohmann::json residuals = nlohmann::json::array();
+            for (const AnchorResidual& a : anchor_report.residuals) {
+              worst_residual = std::max(worst_residual, a.distance_m);
+              residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
+            }
             if (!options->out.empty()) write_path_file(r.path, options->out);
             const nlohmann::json summary = {
                 {"capture", options->capture},
@@ -148,6 +179,8 @@ Command add_track_command(CLI::App& parent) {
                 {"flagged_frames", r.flagged_frames},
                 {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
                 {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
+                {"anchors", anchors.size()},
+                {"anchor_residuals", residuals},
                 {"out", options->out}};
             if (options->json) {
               std::cout << summary.dump(2) << "\n";
@@ -156,6 +189,10 @@ Command add_track_command(CLI::App& parent) {
                         << r.points << " points), path length " << std::fixed << std::setprecision(2)
                         << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
                         << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged\n";
+              if (!anchors.empty())
+                std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
+                          << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "
+                          << anchor_report.iterations << " iterations\n";
               if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
             }
             return kExitOk;

@@ -83,4 +83,43 @@ grep -q "nothing-here" "$tmp/err.txt" || fail "missing capture message: $(cat "$
 grep -q "known-distance" "$tmp/err.txt" || fail "bad --known-distance message: $(cat "$tmp/err.txt")"
 "$cli" track 2>/dev/null; code=$?
 [[ $code -eq 2 ]] || fail "track without --capture: exit $code"
+# track --anchors: a rendered 40-frame walk through the office sample, anchored at three of its ground-truth
+# positions. Tracked alone the path starts at the origin; with the anchors it lies on the plan: every frame
+# within 5 cm of the truth, the anchored ones within 5 cm of their anchors. Bad anchors fail before tracking.
+"$cli" render --plan office-sample --auto-path --frames 40 --size 512x256 --out "$tmp/walk" --quiet || fail "render exit $?"
+python3 - "$tmp/walk/groundtruth.json" "$tmp/anchors.json" <<'PY'
+import json, sys
+f = json.load(open(sys.argv[1]))["frames"]
+json.dump([{"index": f[i]["index"], "x": f[i]["x"], "y": f[i]["y"]} for i in (0, 20, 39)], open(sys.argv[2], "w"))
+PY
+"$cli" track --capture "$tmp/walk/frames" --camera-height 1.6 --out "$tmp/free.json" --quiet > /dev/null || fail "track exit $?"
+"$cli" track --capture "$tmp/walk/frames" --camera-height 1.6 --anchors "$tmp/anchors.json" --out "$tmp/anchored.json" \
+  > "$tmp/anchored.txt" 2> "$tmp/anchored_err.txt" || fail "track --anchors exit $?: $(cat "$tmp/anchored_err.txt")"
+grep -q "refined with 3 anchors" "$tmp/anchored.txt" || fail "track --anchors output: $(cat "$tmp/anchored.txt")"
+grep -q "refining with 3 anchors" "$tmp/anchored_err.txt" || fail "track --anchors progress: $(cat "$tmp/anchored_err.txt")"
+python3 - "$tmp/walk/groundtruth.json" "$tmp/free.json" "$tmp/anchored.json" "$tmp/anchors.json" <<'PY' || fail "anchored path not on the plan"
+import json, math, sys
+truth, free, anchored = ({f["index"]: f for f in json.load(open(p))["frames"]} for p in sys.argv[1:4])
+anchors = json.load(open(sys.argv[4]))
+def worst(path):
+    return max(math.hypot(path[i]["x"] - t["x"], path[i]["y"] - t["y"]) for i, t in truth.items())
+print("track --anchors: largest distance to the truth %.3f m without anchors, %.3f m with" % (worst(free), worst(anchored)))
+assert worst(free) > 1.0, worst(free)
+assert worst(anchored) < 0.05, worst(anchored)
+for a in anchors:
+    f = anchored[a["index"]]
+    assert math.hypot(f["x"] - a["x"], f["y"] - a["y"]) < 0.05, (a, f)
+PY
+"$cli" track --capture "$tmp/walk/frames" --camera-height 1.6 --anchors "$tmp/anchors.json" --json --quiet > "$tmp/a.json" \
+  || fail "track --anchors --json exit $?"
+python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); assert s["anchors"]==3 and len(s["anchor_residuals"])==3 and s["scale_source"]=="anchors", s' \
+  "$tmp/a.json" || fail "track --anchors json: $(cat "$tmp/a.json")"
+echo '[{"index":0,"x":1,"y":1},{"index":400,"x":2,"y":2}]' > "$tmp/off.json"
+"$cli" track --capture "$tmp/walk/frames" --anchors "$tmp/off.json" --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "anchor off the capture: exit $code"
+grep -q "off.json: anchor on frame 400" "$tmp/err.txt" || fail "anchor off the capture message: $(cat "$tmp/err.txt")"
+echo '[{"index":0,"y":1}]' > "$tmp/bad.json"
+"$cli" track --capture "$tmp/walk/frames" --anchors "$tmp/bad.json" --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "bad anchors file: exit $code"
+grep -q "bad.json" "$tmp/err.txt" || fail "bad anchors file message: $(cat "$tmp/err.txt")"
 echo "ok"
