@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
+#include "model/path_io.h"
 #include "processing/visibility.h"
+#include "rig/synthetic_camera.h"
 
 namespace plenopath {
 namespace {
@@ -100,6 +103,12 @@ double orient(const Vec& a, const Vec& b, const Vec& c) {
 bool crosses_wall(const std::vector<PlanSegment>& walls, const Vec& p, const Vec& q) {
   for (const auto& w : walls) {
     const double o1 = orient(p, q, w.a), o2 = orient(p, q, w.b), o3 = orient(w.a, w.b, p), o4 = orient(w.a, w.b, q);
+    if (o1 == 0 && o2 == 0) {  // collinear: do they overlap?
+      const Vec d = q - p;
+      const double ta = (w.a - p).dot(d) / d.squaredNorm(), tb = (w.b - p).dot(d) / d.squaredNorm();
+      if (std::max(ta, tb) >= 0 && std::min(ta, tb) <= 1) return true;
+      continue;
+    }
     if (o1 * o2 <= 0 && o3 * o4 <= 0) return true;
   }
   return false;
@@ -289,6 +298,49 @@ TEST(VisibilityFastArea, DegenerateGeometryAndGridAlignedPoints) {
   EXPECT_GE(fast.area_counts().fast, static_cast<std::size_t>(queries * 9 / 10));
   std::printf("grid-aligned points: %d queries, %zu fast, %zu exact fallbacks\n", queries, fast.area_counts().fast,
               fast.area_counts().exact);
+}
+
+// The office sample along its default walk: areas against the ray caster, and the critical lines drawn for
+// the cell decomposition are windows clipped to free space (from a plan vertex to a wall, through free
+// space only).
+TEST(VisibilityFastArea, OfficeSampleCellsAndCriticalLines) {
+  const FloorPlan plan = make_office_sample_plan();
+  const CameraPath path = read_path_file(std::string(PLENOPATH_SOURCE_DIR) + "/resources/samples/office/office_path.json");
+  const VisibilityIndex index(plan);
+  const auto walls = index.effective_segments();
+  const auto vertices = index.vertices();
+  const auto s_at = path.arc_lengths();
+  const VisibilityCells cells = index.cells_along_path(path);
+  ASSERT_GT(cells.cells.size(), 100u);
+  EXPECT_EQ(index.area_counts().exact, 0u);
+  for (std::size_t c = 0; c < cells.cells.size(); c += cells.cells.size() / 12) {
+    const auto& cell = cells.cells[c];
+    const Vec mid = point_at(path, s_at, 0.5 * (cell.s_begin + cell.s_end));
+    EXPECT_NEAR(cell.area_mid / ray_cast_area(walls, mid, 20000), 1.0, 1e-3) << "cell " << c;
+  }
+  ASSERT_FALSE(cells.critical_lines.empty());
+  auto distance_to_walls = [&](const Vec& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& w : walls) {
+      const Vec d = w.b - w.a;
+      const double t = std::clamp((p - w.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (w.a + t * d - p).norm());
+    }
+    return best;
+  };
+  for (const auto& line : cells.critical_lines) {
+    double nearest_vertex = std::numeric_limits<double>::infinity();
+    for (const auto& v : vertices) nearest_vertex = std::min(nearest_vertex, (v - line.a).norm());
+    ASSERT_LT(nearest_vertex, 1e-9) << "a critical line starts at a plan vertex: " << line.a.transpose();
+    ASSERT_LT(distance_to_walls(line.b), 1e-6) << "and ends on a wall: " << line.b.transpose();
+    ASSERT_GT((line.b - line.a).norm(), 1e-9);
+    for (double f : {0.01, 0.25, 0.5, 0.75, 0.99})
+      ASSERT_EQ(index.classify(line.a + f * (line.b - line.a)), EnvelopeStatus::ok)
+          << "through free space: " << line.a.transpose() << " -> " << line.b.transpose() << " at " << f;
+    // The open segment crosses no wall.
+    const Vec a = line.a + 1e-7 * (line.b - line.a), b = line.b - 1e-7 * (line.b - line.a);
+    ASSERT_FALSE(crosses_wall(walls, a, b)) << line.a.transpose() << " -> " << line.b.transpose();
+  }
 }
 
 TEST(VisibilityFastArea, CellsDoNotDependOnThreadsOrRuns) {
