@@ -11,6 +11,7 @@
 #include <QLineEdit>
 #include <QListWidget>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QStyle>
 #include <QTimer>
 #include <QUndoStack>
@@ -120,7 +121,11 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   buttons->addWidget(goto_);
   buttons->addWidget(delete_);
   buttons->addStretch(1);
-  auto* layout = new QVBoxLayout(this);
+  // Inside a scroll area: the dock must not force a minimum window height on small screens.
+  auto* content = new QWidget;
+  auto* layout = new QVBoxLayout(content);
+  layout->setContentsMargins(4, 4, 4, 4);
+  list_->setMinimumHeight(60);
   layout->addWidget(list_, 1);
   layout->addWidget(summary_);
   layout->addLayout(buttons);
@@ -128,7 +133,13 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   layout->addWidget(info_);
   layout->addWidget(warning_text_);
   layout->addWidget(play_);
-  layout->addStretch(0);
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidget(content);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  outer->addWidget(scroll);
 
   validate_timer_->setSingleShot(true);
   validate_timer_->setInterval(250);  // a corner drag re-validates once it pauses

@@ -7,9 +7,18 @@
 
 #include "app/cli/command.h"
 #include "model/project_io.h"
+#include "processing/hotspots/hotspot_validation.h"
 
 namespace plenopath::cli {
 namespace {
+
+// Problems an author should fix before exporting (missing media, inconsistent quads, markup in text).
+nlohmann::json hotspot_warnings(const Project& p) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const HotspotWarning& w : validate_hotspots(p))
+    out.push_back({{"hotspot", w.hotspot_id}, {"field", w.field}, {"message", w.message}});
+  return out;
+}
 
 nlohmann::json summarize(const Project& p, const std::string& file) {
   const PlanExtents e = p.plan.extents();
@@ -41,6 +50,7 @@ nlohmann::json summarize(const Project& p, const std::string& file) {
           {"visibility", {{"events", p.visibility.events.size()}, {"cells", p.visibility.cells.size()}}},
           {"keyframes", {{"count", p.keyframes.indices.size()}, {"method", p.keyframes.parameters.method}}},
           {"hotspots", p.hotspots.size()},
+          {"hotspot_warnings", hotspot_warnings(p)},
           {"geo_anchor", p.geo.valid}};
 }
 
@@ -68,6 +78,7 @@ void print_text(const nlohmann::json& s) {
   std::cout << "Keyframes " << s["keyframes"]["count"] << " (" << s["keyframes"]["method"].get<std::string>()
             << ")\n";
   std::cout << "Hotspots  " << s["hotspots"] << "\n";
+  for (const auto& w : s["hotspot_warnings"]) std::cout << "  warning: " << w["message"].get<std::string>() << "\n";
 }
 
 }  // namespace
