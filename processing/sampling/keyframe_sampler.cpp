@@ -1,0 +1,34 @@
+#include "processing/sampling/keyframe_sampler.h"
+
+#include "model/error.h"
+#include "processing/sampling/keyframe_placement.h"
+
+namespace plenopath {
+
+Keyframes sample_keyframes(const SamplingInputs& inputs, const SamplingParameters& parameters,
+                           const std::vector<int>& pinned) {
+  if (!inputs.path) throw Error("sampling: no camera path");
+  const CameraPath& path = *inputs.path;
+  if (parameters.method == "uniform") {
+    Keyframes k = place_keyframes(path, uniform_density(path.length()), parameters, pinned);
+    k.parameters.method = "uniform";
+    return k;
+  }
+  if (parameters.method == "visibility") {
+    VisibilitySamplingInputs v;
+    v.cells = inputs.cells;
+    v.index = inputs.index;
+    v.envelopes = inputs.envelopes;
+    v.raster = inputs.raster;
+    v.progress = inputs.progress;
+    return sample_by_visibility(path, v, parameters, pinned, inputs.visibility);
+  }
+  if (parameters.method == "depth") {
+    if (!inputs.depth_volumes || inputs.depth_volumes->empty())
+      throw Error("depth sampling: the capture has no depth maps (depth sampling needs one per frame)");
+    return sample_by_depth(path, *inputs.depth_volumes, parameters, pinned, inputs.depth);
+  }
+  throw Error("sampling: unknown method '" + parameters.method + "' (uniform, visibility or depth)");
+}
+
+}  // namespace plenopath

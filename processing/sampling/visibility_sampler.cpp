@@ -1,0 +1,150 @@
+#include "processing/sampling/visibility_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "model/error.h"
+#include "processing/sampling/keyframe_placement.h"
+#include "processing/sampling/loss_refinement.h"
+#include "processing/sampling/polygon_iou.h"
+
+namespace plenopath {
+
+const char* to_string(VisibilityRule rule) {
+  return rule == VisibilityRule::cell_rule ? "cell_rule" : "expected_loss";
+}
+
+VisibilityRule visibility_rule_from_string(const std::string& text) {
+  if (text == "cell_rule" || text == "cells" || text == "paper") return VisibilityRule::cell_rule;
+  if (text == "expected_loss" || text == "loss") return VisibilityRule::expected_loss;
+  throw Error("sampling: unknown visibility rule '" + text + "' (cell_rule or expected_loss)");
+}
+
+void VisibilitySamplingOptions::check() const {
+  cells.check();
+  if (!(probe_spacing_m > 0.0)) throw Error("sampling: probe spacing must be > 0 m");
+  if (!(loss_power > 0.0) || loss_power > 4.0) throw Error("sampling: loss power must be in (0, 4]");
+  if (!(density_floor >= 0.0)) throw Error("sampling: density floor must be >= 0");
+  if (!(raster_cell_m > 0.0)) throw Error("sampling: raster cell must be > 0 m");
+  if (refine_sweeps < 0) throw Error("sampling: refine sweeps must be >= 0");
+}
+
+Eigen::Vector2d point_at_arc_length(const CameraPath& path, const std::vector<double>& s, double at) {
+  if (path.empty()) return Eigen::Vector2d::Zero();
+  if (at <= s.front()) return path.frames.front().position();
+  if (at >= s.back()) return path.frames.back().position();
+  const std::size_t i = static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), at) - s.begin());  // s[i] > at
+  const double span = s[i] - s[i - 1];
+  const double t = span > 0.0 ? (at - s[i - 1]) / span : 0.0;
+  return (1.0 - t) * path.frames[i - 1].position() + t * path.frames[i].position();
+}
+
+std::vector<SamplingCell> sampling_cells_from_visibility(const CameraPath& path, const VisibilityCells& cells,
+                                                         const VisibilityIndex* index) {
+  const std::vector<double> s = path.arc_lengths();
+  std::vector<SamplingCell> out;
+  out.reserve(cells.cells.size());
+  for (const VisibilityCell& c : cells.cells) {
+    SamplingCell cell;
+    cell.s_begin = c.s_begin;
+    cell.s_end = c.s_end;
+    cell.size = c.area_mean > 0.0 ? c.area_mean : c.area_mid;
+    if (!(cell.size > 0.0) && index)
+      cell.size = index->envelope_area(point_at_arc_length(path, s, 0.5 * (c.s_begin + c.s_end)));
+    out.push_back(cell);
+  }
+  return out;
+}
+
+DensityProfile expected_loss_density(const CameraPath& path, const VisibilityIndex& index,
+                                     const VisibilitySamplingOptions& options) {
+  options.check();
+  const std::vector<double> s = path.arc_lengths();
+  const double length = s.empty() ? 0.0 : s.back();
+  if (!(length > 0.0)) return uniform_density(length);
+  const int pieces = std::max(1, static_cast<int>(std::ceil(length / options.probe_spacing_m)));
+  std::vector<Envelope> probe(pieces + 1);
+  for (int k = 0; k <= pieces; ++k)
+    probe[k] = index.envelope(point_at_arc_length(path, s, length * k / pieces));
+  DensityProfile profile;
+  profile.breaks.push_back(0.0);
+  const double step = length / pieces;
+  for (int k = 0; k < pieces; ++k) {
+    const Envelope& a = probe[k];
+    const Envelope& b = probe[k + 1];
+    double change = 0.0;
+    if (a.status == EnvelopeStatus::ok && b.status == EnvelopeStatus::ok) change = 1.0 - polygon_iou(a.polygon, b.polygon);
+    else if ((a.status == EnvelopeStatus::ok) != (b.status == EnvelopeStatus::ok)) change = 1.0;
+    profile.breaks.push_back(length * (k + 1) / pieces);
+    profile.density.push_back(std::pow(change / step, options.loss_power));
+  }
+  const double mean = profile.total_mass() / length;
+  if (!(mean > 0.0)) return uniform_density(length);
+  for (double& d : profile.density) d = std::max(d, options.density_floor * mean);
+  return profile;
+}
+
+Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingInputs& inputs,
+                               const SamplingParameters& parameters, const std::vector<int>& pinned,
+                               const VisibilitySamplingOptions& options_in) {
+  const VisibilityCells* cells = inputs.cells;
+  const VisibilityIndex* index = inputs.index;
+  VisibilitySamplingOptions options = options_in;
+  options.cells.exponent = parameters.exponent;
+  options.cells.transition_boost = parameters.transition_boost;
+  options.check();
+  check_sampling_parameters(parameters);
+  DensityProfile density;
+  if (options.rule == VisibilityRule::cell_rule) {
+    if (!cells || cells->cells.empty())
+      throw Error("visibility sampling: no visibility cells along the path (compute visibility first)");
+    density = cell_rule_density(sampling_cells_from_visibility(path, *cells, index), path.length(), options.cells);
+  } else {
+    if (!index) throw Error("visibility sampling: the expected-loss rule needs the floor plan's visibility");
+    density = expected_loss_density(path, *index, options);
+  }
+  Keyframes k = place_keyframes(path, density, parameters, pinned);
+  k.parameters.method = "visibility";
+  if (options.rule != VisibilityRule::expected_loss || !options.refine_by_loss || k.indices.size() < 3) return k;
+
+  // Refinement by the loss each keyframe position causes, on the rasterised envelopes of every frame.
+  auto report = [&](double from, double to) {
+    return [&inputs, from, to](double f) {
+      if (inputs.progress) inputs.progress(from + (to - from) * f);
+    };
+  };
+  PathEnvelopes computed;
+  const PathEnvelopes* envelopes = inputs.envelopes;
+  if (!envelopes || envelopes->frames.size() != path.size()) {
+    computed = compute_path_envelopes(*index, path, 0, report(0.0, 0.6));
+    envelopes = &computed;
+  }
+  std::unique_ptr<EnvelopeRaster> built;
+  const EnvelopeRaster* raster = inputs.raster;
+  if (!raster || raster->frames() != static_cast<int>(path.size())) {
+    built = std::make_unique<EnvelopeRaster>(*envelopes, options.raster_cell_m);
+    raster = built.get();
+  }
+  const std::vector<double> s = path.arc_lengths();
+  std::vector<int> positions;
+  std::vector<bool> fixed;
+  for (int index_in_capture : k.indices) {
+    const int i = static_cast<int>(path.find_frame(index_in_capture) - path.frames.data());
+    positions.push_back(i);
+    fixed.push_back(i == 0 || i + 1 == static_cast<int>(path.size()) ||
+                    std::find(pinned.begin(), pinned.end(), index_in_capture) != pinned.end());
+  }
+  LossRefinementOptions refine;
+  refine.sweeps = options.refine_sweeps;
+  refine.min_spacing_m = parameters.min_spacing_m;
+  refine.max_spacing_m = parameters.max_spacing_m;
+  positions = refine_by_loss(*raster, s, positions, fixed, refine, report(0.6, 0.95));
+  k.indices.clear();
+  for (int i : positions) k.indices.push_back(path.frames[i].index);
+  k.rank = loss_ranks(*raster, s, positions, fixed);
+  if (inputs.progress) inputs.progress(1.0);
+  return k;
+}
+
+}  // namespace plenopath
