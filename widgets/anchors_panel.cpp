@@ -43,12 +43,17 @@ AnchorsPanel::AnchorsPanel(ProjectDocument& document, QWidget* parent)
       refine_(new QToolButton(this)) {
   table_->setObjectName("anchors_table");
   table_->setColumnCount(kColumnCount);
-  table_->setHorizontalHeaderLabels({tr("Frame"), tr("x (m)"), tr("y (m)"), tr("Heading (°)"), tr("Residual (m)")});
+  // Short headers: the dock is narrow; the tooltips say the rest.
+  table_->setHorizontalHeaderLabels({tr("Frame"), tr("x (m)"), tr("y (m)"), tr("θ (°)"), tr("Resid. (m)")});
+  table_->horizontalHeaderItem(kHeadingColumn)
+      ->setToolTip(tr("Heading the frame must have, in degrees (empty: the refinement leaves it free)"));
   table_->horizontalHeaderItem(kResidualColumn)
-      ->setToolTip(tr("How far the path's frame is from its anchor (after the last correction or refinement)"));
-  table_->horizontalHeaderItem(kHeadingColumn)->setToolTip(tr("Empty: the refinement leaves the heading free"));
+      ->setToolTip(tr("Residual: how far the path's frame is from its anchor, in metres (after the last "
+                      "correction or refinement)"));
   table_->verticalHeader()->hide();
+  table_->verticalHeader()->setDefaultSectionSize(fontMetrics().height() + 6);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  table_->horizontalHeader()->setMinimumSectionSize(20);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed |
                           QAbstractItemView::AnyKeyPressed);
