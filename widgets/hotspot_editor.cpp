@@ -30,10 +30,35 @@ constexpr double kHandleRadius = 9.0;   // widget pixels within which a press gr
 constexpr double kClickSlop = 5.0;      // a press and release closer than this is a click, not a look-around
 constexpr int kEdgeSteps = 16;          // samples per edge when drawing re-projected outlines
 constexpr int kMaxMediaSide = 1024;     // preview media is scaled down to this
+constexpr int kOverlayHeight = 512;     // whole-image mode: the media is warped into a 1024 x 512 overlay
 
 const QColor kOutline(255, 200, 40);
 const QColor kSelected(40, 220, 255);
 const QColor kPending(255, 70, 70);
+
+// The media (RGB888 preview) warped onto the quad in a whole equirectangular frame, transparent elsewhere:
+// processing's warp_media_into_equirect paints the media and, separately, a white mask of the covered pixels.
+QImage equirect_overlay(const QImage& media, const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
+                        double camera_height_m) {
+  const QImage rgb = media.convertToFormat(QImage::Format_RGB888);
+  cv::Mat media_bgr;
+  cv::cvtColor(cv::Mat(rgb.height(), rgb.width(), CV_8UC3, const_cast<uchar*>(rgb.constBits()),
+                       static_cast<std::size_t>(rgb.bytesPerLine())),
+               media_bgr, cv::COLOR_RGB2BGR);
+  cv::Mat canvas(kOverlayHeight, 2 * kOverlayHeight, CV_8UC3, cv::Scalar::all(0));
+  cv::Mat mask = canvas.clone();
+  warp_media_into_equirect(canvas, media_bgr, quad, pose, camera_height_m);
+  warp_media_into_equirect(mask, cv::Mat(media_bgr.size(), CV_8UC3, cv::Scalar::all(255)), quad, pose, camera_height_m);
+  QImage out(canvas.cols, canvas.rows, QImage::Format_ARGB32);
+  out.fill(Qt::transparent);
+  for (int v = 0; v < canvas.rows; ++v)
+    for (int u = 0; u < canvas.cols; ++u)
+      if (mask.at<cv::Vec3b>(v, u)[0] > 0) {
+        const cv::Vec3b c = canvas.at<cv::Vec3b>(v, u);
+        out.setPixel(u, v, qRgba(c[2], c[1], c[0], mask.at<cv::Vec3b>(v, u)[0]));
+      }
+  return out;
+}
 
 QImage to_qimage(const cv::Mat& bgr) {
   cv::Mat small = bgr;
@@ -478,8 +503,25 @@ void HotspotEditor::paint(QPainter& painter) {
     const bool selected = h.id == selected_;
     const QPolygonF polygon(QVector<QPointF>(s.corners.begin(), s.corners.end()));
     bool textured = false;
+    // Whole-image mode: the media warped into the equirectangular frame on the CPU (curved edges and all).
+    if (h.kind == HotspotKind::kMovieTexture && h.world_corners.size() == 4 && view_.equirect_mode() &&
+        !h.media.empty() && !media_image(h.media).isNull()) {
+      const Project& p = document_.project();
+      const int position = document_.current_position();
+      if (position >= 0 && position < static_cast<int>(p.path.size())) {
+        try {
+          painter.drawImage(view_.image_box(),
+                            equirect_overlay(media_image(h.media), h.world_corners,
+                                             p.path.frames[static_cast<std::size_t>(position)],
+                                             camera_height_or_default(p.capture.camera_height_m)));
+          textured = true;
+        } catch (const Error&) {
+          // A degenerate quad: outlined only.
+        }
+      }
+    }
     // Movie texture preview: the media mapped onto the quad by the view's homography (exact for a planar
-    // quad seen through a pinhole view; the whole-image mode only outlines).
+    // quad seen through a pinhole view).
     if (h.kind == HotspotKind::kMovieTexture && s.corners.size() == 4 && !view_.equirect_mode() && !h.media.empty()) {
       const QImage& image = media_image(h.media);
       QTransform transform;

@@ -21,7 +21,7 @@ vtkSmartPointer<vtkActor> make_hotspot_marker_actor() {
   mapper->SetScalarVisibility(false);
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.95, 0.62, 0.05);  // the panorama view's hotspot amber, darker on paper
+  actor->GetProperty()->SetColor(0.98, 0.80, 0.0);  // gold: apart from the orange critical lines
   actor->GetProperty()->SetLineWidth(4.0f);
   actor->GetProperty()->SetPointSize(11.0f);
   actor->GetProperty()->RenderPointsAsSpheresOn();

@@ -44,6 +44,8 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   std::optional<SphericalAngles> direction_at(const QPointF& widget_point) const;
   // Widget point of a direction in the frame's camera; none when behind the viewer.
   std::optional<QPointF> widget_point_of(const SphericalAngles& direction) const;
+  // The letterboxed image's rectangle in whole-image mode (widget pixels).
+  QRectF image_box() const;
   // Hotspot authoring and overlay in this view.
   HotspotEditor& hotspot_editor() const { return *hotspots_; }
 
@@ -66,8 +68,6 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   void upload_pending_image();
   void draw_overlay();
   void release_gl();
-  // The letterboxed image's rectangle in whole-image mode (widget pixels).
-  QRectF image_box() const;
 
   ProjectDocument& document_;
   FrameProvider& frames_;

@@ -170,6 +170,8 @@ void MainWindow::create_docks() {
   hotspots_ = new widgets::HotspotsPanel(*document_, panorama_->hotspot_editor(), this);
   QDockWidget* hotspots = dock(tr("Hotspots"), "hotspots_dock", hotspots_, Qt::RightDockWidgetArea);
   tabifyDockWidget(sampling, hotspots);
+  connect(&panorama_->hotspot_editor(), &widgets::HotspotEditor::selection_changed, hotspots,
+          [hotspots](const QString& id) { if (!id.isEmpty()) hotspots->raise(); });
   tabifyDockWidget(layers, undo);
   tabifyDockWidget(layers, anchors);
   sampling->raise();

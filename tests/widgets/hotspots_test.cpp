@@ -16,6 +16,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "app/studio/main_window.h"
 #include "processing/hotspots/hotspot_geometry.h"
@@ -155,7 +156,7 @@ TEST(Hotspots, FourClicksPlaceAMovieTextureOnTheWallUndoRedo) {
     for (int x = at.x() - 4; x <= at.x() + 4; ++x)
       if (image.valid(x, y)) {
         const QRgb c = image.pixel(x, y);
-        amber += qRed(c) > 190 && qGreen(c) > 110 && qGreen(c) < 200 && qBlue(c) < 90;
+        amber += qRed(c) > 200 && qGreen(c) > 160 && qBlue(c) < 80;  // gold, not the paler critical lines
       }
   EXPECT_GT(amber, 4) << "hotspot marker on the map";
 }
@@ -292,6 +293,45 @@ TEST(Hotspots, EventPolygonEditedInThePanelWithPlainTextWarnings) {
   panel->list()->setCurrentRow(0);
   EXPECT_EQ(s.editor().selected(), "poster");
   EXPECT_EQ(s.document().current_position(), 0);
+}
+
+TEST(Hotspots, VideoMediaPlaysInThePreviewAndWarpsInWholeImageMode) {
+  Studio s;
+  open_and_look_east(s);
+  const std::string id = place_movie_texture(s);
+  // A 10 fps clip: five red frames, then five blue ones.
+  const QString clip = QFileInfo(test_project().project_file).absolutePath() + "/clip.avi";
+  {
+    cv::VideoWriter writer(clip.toStdString(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0,
+                           cv::Size(64, 48));
+    ASSERT_TRUE(writer.isOpened());
+    for (int k = 0; k < 10; ++k) writer.write(cv::Mat(48, 64, CV_8UC3, k < 5 ? cv::Scalar(0, 0, 255) : cv::Scalar(255, 0, 0)));
+  }
+  widgets::HotspotsPanel* panel = s.window.hotspots_panel();
+  panel->media_edit()->setFocus();
+  panel->media_edit()->selectAll();
+  QTest::keyClicks(panel->media_edit(), clip);
+  ASSERT_EQ(QString::fromStdString(s.hotspot(id)->media), clip);
+  const std::vector<Eigen::Vector3d>& q = s.hotspot(id)->world_corners;
+  const Eigen::Vector3d centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  auto centre_colour = [&] {
+    return s.pano()->grabFramebuffer().convertToFormat(QImage::Format_RGB32).pixel(point_of(s, centre, 0).toPoint());
+  };
+  auto is_red = [](QRgb c) { return qRed(c) > 200 && qGreen(c) < 60 && qBlue(c) < 60; };
+  auto is_blue = [](QRgb c) { return qBlue(c) > 200 && qGreen(c) < 60 && qRed(c) < 60; };
+  EXPECT_TRUE(is_red(centre_colour())) << "the first frame";
+  s.editor().set_playing(true);
+  EXPECT_TRUE(wait_until([&] { return is_blue(centre_colour()); }, 5000)) << "playing reaches the blue frames";
+  s.editor().set_playing(false);
+
+  // Whole-image mode: the quad's centre in the equirectangular frame shows the media too.
+  s.pano()->set_equirect_mode(true);
+  const QRgb c = centre_colour();
+  EXPECT_TRUE(is_red(c) || is_blue(c)) << qRed(c) << "," << qGreen(c) << "," << qBlue(c);
+
+  // Validation decodes the clip: no media warning.
+  panel->validate_now();
+  for (const HotspotWarning& w : panel->warnings()) EXPECT_NE(w.field, "media") << w.message;
 }
 
 }  // namespace
