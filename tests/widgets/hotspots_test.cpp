@@ -20,6 +20,7 @@
 
 #include "app/studio/main_window.h"
 #include "processing/hotspots/hotspot_geometry.h"
+#include "processing/hotspots/hotspot_validation.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/hotspot_editor.h"
@@ -146,7 +147,19 @@ TEST(Hotspots, FourClicksPlaceAMovieTextureOnTheWallUndoRedo) {
   for (std::size_t i = 0; i < 4; ++i)
     EXPECT_LT(distance((*corners)[i], point_of(s, kWallRectangle[i], 12)), 3.0) << "corner " << i;
 
-  // The map shows it at its 3-D position: amber on the east wall around y = 3.5.
+  // A corner dragged in frame 12 stays on the wall, and its mark in the authoring frame follows: validation
+  // finds the marks consistent with the 3-D quad.
+  const QPointF from = (*corners)[2];
+  send_mouse(s.pano(), QEvent::MouseButtonPress, from, Qt::LeftButton);
+  send_mouse(s.pano(), QEvent::MouseMove, from + QPointF(15, 10), Qt::LeftButton);
+  send_mouse(s.pano(), QEvent::MouseButtonRelease, from + QPointF(15, 10), Qt::NoButton);
+  const Hotspot& dragged = *s.hotspot(id);
+  EXPECT_NEAR(dragged.world_corners[2].x(), 8.0, 1e-9);
+  EXPECT_GT((dragged.world_corners[2] - placed[2]).norm(), 0.05) << "the corner moved";
+  for (const HotspotWarning& w : validate_hotspot(dragged, s.document().project()))
+    EXPECT_NE(w.field, "world_corners") << w.message;
+
+  // The map shows it at its 3-D position: gold on the east wall around y = 3.5.
   widgets::MapView* map = s.window.map_view();
   map->render_now();
   const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
