@@ -8,13 +8,21 @@
 
 namespace plenopath::widgets {
 
-SetAnchorsCommand::SetAnchorsCommand(ProjectDocument& document, const QString& text, Anchors after, bool bend_path)
+SetAnchorsCommand::SetAnchorsCommand(ProjectDocument& document, const QString& text, Anchors after,
+                                     PathCorrection correction)
     : QUndoCommand(text), document_(document), before_(document.project().anchors), after_(std::move(after)) {
   const CameraPath& path = document.project().path;
-  if (bend_path && !path.empty() && !after_.empty()) {
-    path_after_ = preview_path_with_anchors(path, after_);  // throws before anything changes
-    path_before_ = path;
+  if (correction == PathCorrection::kNone || path.empty() || after_.empty()) return;
+  // Both throw before anything changes.
+  if (correction == PathCorrection::kRefine && path.size() <= kMaxFramesRefinedAtOnce) {
+    path_after_ = refine_path_with_anchors(path, after_);
+    path_after_->scale_source = "anchors";
+    applied_ = PathCorrection::kRefine;
+  } else {
+    path_after_ = preview_path_with_anchors(path, after_);
+    applied_ = PathCorrection::kWarp;
   }
+  path_before_ = path;
 }
 
 void SetAnchorsCommand::undo() {

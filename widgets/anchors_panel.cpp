@@ -181,9 +181,8 @@ void AnchorsPanel::on_item_changed(QTableWidgetItem* item) {
   }
   if (anchors == p.anchors) return;
   try {
-    // A heading alone does not move the path; positions and frames do.
-    const bool bend = item->column() != kHeadingColumn;
-    document_.undo_stack()->push(new SetAnchorsCommand(document_, what, std::move(anchors), bend));
+    // Every edit corrects the path at once, as a drag on the map does.
+    document_.undo_stack()->push(new SetAnchorsCommand(document_, what, std::move(anchors), PathCorrection::kRefine));
   } catch (const Error& e) {
     show_problem(QString::fromStdString(e.what()));
   }
@@ -199,7 +198,8 @@ void AnchorsPanel::delete_selected() {
   if (frames.empty()) return;
   const QString text = frames.size() == 1 ? tr("Delete anchor of frame %1").arg(frames.front())
                                           : tr("Delete %1 anchors").arg(frames.size());
-  document_.undo_stack()->push(new SetAnchorsCommand(document_, text, anchors_without(anchors, frames), false));
+  document_.undo_stack()->push(
+      new SetAnchorsCommand(document_, text, anchors_without(anchors, frames), PathCorrection::kNone));
 }
 
 bool AnchorsPanel::eventFilter(QObject* watched, QEvent* event) {

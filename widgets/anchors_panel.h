@@ -1,9 +1,9 @@
 #pragma once
 // The Anchors dock: one row per drift anchor (frame, x, y, heading, residual = how far the path's frame
 // is from its anchor, in metres). Frame, x, y and heading are editable (an empty heading leaves it free);
-// an edit of a position bends the path onto the anchor like a drag on the map does. Del or the button
-// removes the selected anchors (the path stays). Selecting a row goes to that frame. Every edit is one
-// undo step (widgets/anchor_commands.h). The "Refine with anchors" action belongs to the main window; the
+// an edit corrects the path with the anchors like a drag on the map does. Del or the button removes the
+// selected anchors (the path stays). Selecting a row goes to that frame. Every edit is one undo step
+// (widgets/anchor_commands.h). The "Refine path with anchors" action belongs to the main window; the
 // panel shows it as a button.
 #include <QWidget>
 

@@ -660,11 +660,18 @@ void MapView::end_anchor_drag(bool apply) {
     const bool existing = std::any_of(document_.project().anchors.begin(), document_.project().anchors.end(),
                                       [&](const Anchor& a) { return a.frame == drag.frame; });
     try {
-      document_.undo_stack()->push(new SetAnchorsCommand(
+      auto* command = new SetAnchorsCommand(
           document_, existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
-          drag.anchors, true));
-      emit message(tr("Frame %1 anchored at (%2, %3) m").arg(drag.frame).arg(drag.target.x(), 0, 'f', 2).arg(
-          drag.target.y(), 0, 'f', 2));
+          drag.anchors, PathCorrection::kRefine);
+      const bool refined = command->applied() == PathCorrection::kRefine;
+      document_.undo_stack()->push(command);
+      emit message(tr("Frame %1 anchored at (%2, %3) m; %4")
+                       .arg(drag.frame)
+                       .arg(drag.target.x(), 0, 'f', 2)
+                       .arg(drag.target.y(), 0, 'f', 2)
+                       .arg(refined ? tr("path refined with %n anchor(s)", "", static_cast<int>(drag.anchors.size()))
+                                    : tr("path warped (long path: Process > Refine path with anchors for the full "
+                                         "correction)")));
       return;  // the document's change redraws everything
     } catch (const Error& e) {
       emit message(QString::fromStdString(e.what()));

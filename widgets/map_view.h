@@ -6,8 +6,9 @@
 // Drift anchors: Ctrl + left drag from any frame of the path puts that frame where it really was (Shift held
 // at the same time snaps to the nearest plan corner within a few pixels); a plain left drag on an anchor
 // marker moves it; Esc cancels a drag. While dragging, the whole path is previewed bent by the anchors (the
-// fast warp); the release is one undo step. Anchors are magenta squares, each with a thin line to where its
-// frame is on the path (the residual).
+// fast warp, about a millisecond for 30 000 frames); the release is one undo step that places the anchor and
+// refines the path with all anchors (widgets/anchor_commands.h). Anchors are magenta squares, each with a
+// thin line to where its frame is on the path (the residual).
 // Renders are requested and coalesced (one per event-loop turn), never forced by the model.
 #include <Eigen/Core>
 #include <QVTKOpenGLNativeWidget.h>

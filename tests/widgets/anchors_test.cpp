@@ -13,6 +13,10 @@
 #include <gtest/gtest.h>
 
 #include "app/studio/main_window.h"
+#include "processing/anchors/anchor_refinement.h"
+#include "processing/egomotion/path_evaluation.h"
+#include "rig/synthetic_camera.h"
+#include "widgets/anchor_commands.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/anchors_panel.h"
@@ -125,8 +129,8 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
        map->widget_pixel_of(after_first.frames[29].position() - Eigen::Vector2d(0, 1.0)), Qt::ControlModifier);
   ASSERT_EQ(doc.project().anchors.size(), 2u);
   const CameraPath bent = doc.project().path;
-  EXPECT_LT((bent.frames[29].position() - doc.project().anchors[1].position).norm(), 1e-6) << "on its anchor";
-  EXPECT_LT((bent.frames[0].position() - doc.project().anchors[0].position).norm(), 1e-6) << "first anchor kept";
+  EXPECT_LT((bent.frames[29].position() - doc.project().anchors[1].position).norm(), 1e-4) << "on its anchor";
+  EXPECT_LT((bent.frames[0].position() - doc.project().anchors[0].position).norm(), 1e-4) << "first anchor kept";
   std::vector<double> moved;
   for (std::size_t i = 0; i < bent.size(); ++i) {
     moved.push_back((bent.frames[i].position() - after_first.frames[i].position()).norm());
@@ -169,7 +173,7 @@ TEST(Anchors, DraggingAnAnchorMarkerMovesItAndShiftSnapsToAPlanCorner) {
   ASSERT_EQ(doc.project().anchors.size(), 1u);
   EXPECT_EQ(doc.project().anchors[0].frame, frame);
   EXPECT_EQ(doc.project().anchors[0].position, Eigen::Vector2d(4.0, 2.5));
-  EXPECT_EQ(doc.project().path.frames[frame].position(), Eigen::Vector2d(4.0, 2.5));
+  EXPECT_LT((doc.project().path.frames[frame].position() - Eigen::Vector2d(4.0, 2.5)).norm(), 1e-6);
   // A plain drag on the marker moves the same anchor (no new one); Esc in the middle of a drag cancels.
   map->render_now();
   drag(map, corner, map->widget_pixel_of({5.0, 2.0}), Qt::NoModifier);
@@ -216,12 +220,12 @@ TEST(Anchors, PanelListsEditsAndDeletesAnchorsWithResiduals) {
   table->selectRow(1);
   EXPECT_EQ(doc.current_position(), 29);
 
-  // Editing y moves the anchor and bends the path onto it: one undo step.
+  // Editing y moves the anchor and corrects the path onto it: one undo step.
   const int steps = doc.undo_stack()->count();
   table->item(1, widgets::AnchorsPanel::kYColumn)->setText("2.5");
   ASSERT_EQ(doc.project().anchors.size(), 2u);
   EXPECT_EQ(doc.project().anchors[1].position, Eigen::Vector2d(7.0, 2.5));
-  EXPECT_LT((doc.project().path.frames[29].position() - Eigen::Vector2d(7.0, 2.5)).norm(), 1e-9);
+  EXPECT_LT((doc.project().path.frames[29].position() - Eigen::Vector2d(7.0, 2.5)).norm(), 1e-3);
   EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kResidualColumn)->text(), "0.000");
   EXPECT_EQ(doc.undo_stack()->count(), steps + 1);
   doc.undo_stack()->undo();
@@ -229,11 +233,15 @@ TEST(Anchors, PanelListsEditsAndDeletesAnchorsWithResiduals) {
   EXPECT_EQ(doc.project().path, original);
   EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kYColumn)->text(), "3.000");
 
-  // A heading: stored in radians, the path does not move.
-  table->item(0, widgets::AnchorsPanel::kHeadingColumn)->setText("90");
+  // A heading: stored in radians; the refinement turns frame 0 toward it (the path ran east, heading 0).
+  table->item(0, widgets::AnchorsPanel::kHeadingColumn)->setText("10");
   ASSERT_TRUE(doc.project().anchors[0].heading.has_value());
-  EXPECT_NEAR(*doc.project().anchors[0].heading, M_PI / 2, 1e-12);
+  EXPECT_NEAR(*doc.project().anchors[0].heading, radians(10.0), 1e-12);
+  EXPECT_NEAR(doc.project().path.frames[0].heading, radians(10.0), radians(2.0));
+  EXPECT_LT((doc.project().path.frames[0].position() - Eigen::Vector2d(1.0, 3.5)).norm(), 0.05);
+  doc.undo_stack()->undo();
   EXPECT_EQ(doc.project().path, original);
+  EXPECT_FALSE(doc.project().anchors[0].heading.has_value());
 
   // Bad input is refused with a message and the cell shows the document's value again; no undo step.
   const int before_bad = doc.undo_stack()->count();
@@ -253,7 +261,7 @@ TEST(Anchors, PanelListsEditsAndDeletesAnchorsWithResiduals) {
   table->item(1, widgets::AnchorsPanel::kFrameColumn)->setText("20");
   ASSERT_EQ(doc.project().anchors.size(), 2u);
   EXPECT_EQ(doc.project().anchors[1].frame, 20);
-  EXPECT_LT((doc.project().path.frames[20].position() - Eigen::Vector2d(7.0, 3.0)).norm(), 1e-9);
+  EXPECT_LT((doc.project().path.frames[20].position() - Eigen::Vector2d(7.0, 3.0)).norm(), 1e-3);
   doc.undo_stack()->undo();
 
   // Del removes the selected anchor (the path stays); the button does the same; undo brings it back.
@@ -305,6 +313,50 @@ TEST(Anchors, RefineWithAnchorsIsATaskAndOneUndoStep) {
   EXPECT_LT(s.window.anchors_panel()->table()->item(1, widgets::AnchorsPanel::kResidualColumn)->text().toDouble(), 0.05);
   doc.undo_stack()->undo();
   EXPECT_EQ(doc.project().path, original);
+}
+
+// Anchors placed one after another, as an author does (each placement refines the path already corrected
+// by the previous ones), undo the drift as well as the three at once: a 900-frame office walk integrated
+// with a slow heading bias and a 5 % scale error, anchors on ground-truth positions.
+TEST(Anchors, AnchorsPlacedOneByOneUndoDrift) {
+  CameraPath truth = auto_walk(make_office_sample_plan());
+  truth.frames.resize(std::min<std::size_t>(truth.frames.size(), 900));
+  CameraPath drifted = truth;
+  Eigen::Vector2d p = truth.frames[0].position() + Eigen::Vector2d(0.7, -0.4);
+  double bias = 0.1;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (i > 0) {
+      bias += radians(0.02);
+      const Eigen::Vector2d step = truth.frames[i].position() - truth.frames[i - 1].position();
+      p += 1.05 * Eigen::Vector2d(std::cos(bias) * step.x() - std::sin(bias) * step.y(),
+                                  std::sin(bias) * step.x() + std::cos(bias) * step.y());
+    }
+    drifted.frames[i].x = p.x();
+    drifted.frames[i].y = p.y();
+    drifted.frames[i].heading = wrap_angle(truth.frames[i].heading + bias);
+  }
+  Project project;
+  project.path = drifted;
+  widgets::ProjectDocument doc;
+  doc.reset(project, QString());
+  const std::size_t n = truth.size();
+  for (std::size_t i : {std::size_t{0}, n - 1, n / 2}) {
+    const Anchors after = widgets::anchors_with(doc.project().anchors, truth.frames[i].index, truth.frames[i].position());
+    auto* command = new widgets::SetAnchorsCommand(doc, "anchor", after, widgets::PathCorrection::kRefine);
+    EXPECT_EQ(command->applied(), widgets::PathCorrection::kRefine);
+    doc.undo_stack()->push(command);
+  }
+  const double before = evaluate_path(drifted, truth).ate_rms_m;
+  const double after = evaluate_path(doc.project().path, truth).ate_rms_m;
+  std::printf("anchors placed one by one: ATE %.3f m -> %.3f m (%.1fx)\n", before, after, before / after);
+  EXPECT_GT(before / after, 5.0);
+  for (const Anchor& a : doc.project().anchors)
+    EXPECT_LT((doc.project().path.find_frame(a.frame)->position() - a.position).norm(), 0.05) << a.frame;
+  // The warp alone (what the drag previews) does much less.
+  const double warped = evaluate_path(preview_path_with_anchors(drifted, doc.project().anchors), truth).ate_rms_m;
+  std::printf("  the warp alone: ATE %.3f m\n", warped);
+  while (doc.undo_stack()->canUndo()) doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().path, drifted);
 }
 
 }  // namespace
