@@ -209,6 +209,20 @@ int main(int argc, char** argv) {
     hall_index.envelope_area(p);
     hall_fast_us.push_back(thread_cpu_us() - c0);
   }
+  // A 2 000-frame wobbly walk across the hall: ~100 000 windows, ~13 000 cells.
+  CameraPath hall_path;
+  for (int f = 0; f < 2000; ++f) {
+    PathFrame frame;
+    frame.index = f;
+    frame.x = 1.0 + 98.0 * f / 1999;
+    frame.y = 6.0 + 0.5 * std::sin(f * 0.01);
+    hall_path.frames.push_back(frame);
+  }
+  auto h0 = Clock::now();
+  std::clock_t hc0 = std::clock();
+  const VisibilityCells hall_cells = hall_index.cells_along_path(hall_path);
+  const double hall_cells_s = std::chrono::duration<double>(Clock::now() - h0).count();
+  const double hall_cells_cpu_s = static_cast<double>(std::clock() - hc0) / CLOCKS_PER_SEC;
 
   // 10 000 frames: along the corridor and back, then into and out of a room.
   const CameraPath path = polyline_path({{1, 20.5}, {119, 20.5}, {119, 19.5}, {61.5, 19.5}, {61.5, 12}, {61.5, 19.5},
@@ -280,7 +294,10 @@ int main(int argc, char** argv) {
             << ", \"fast_area_median_cpu_us\": " << median(fast_us) << ", \"fast_area_max_rel_diff_vs_exact\": " << fast_max_rel
             << ", \"pillar_hall\": {\"segments\": " << hall_plan.segments.size()
             << ", \"envelope_median_cpu_us\": " << hall_us
-            << ", \"fast_area_median_cpu_us\": " << median(hall_fast_us) << "}"
+            << ", \"fast_area_median_cpu_us\": " << median(hall_fast_us)
+            << ", \"path_frames\": " << hall_path.size() << ", \"cells\": " << hall_cells.cells.size()
+            << ", \"cells_wall_s\": " << hall_cells_s << ", \"cells_cpu_s\": " << hall_cells_cpu_s
+            << ", \"exact_fallbacks\": " << hall_index.area_counts().exact << "}"
             << ", \"path_frames\": " << path.size() << ", \"path_length_m\": " << path.length()
             << ", \"events\": " << cells.events.size() << ", \"cells\": " << cells.cells.size()
             << ", \"critical_lines\": " << cells.critical_lines.size() << ", \"events_wall_s\": " << events_s
