@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
       add_plan_info_command(app),
       add_refine_command(app),
       add_render_command(app),
+      add_sample_command(app),
       add_stitch_command(app),
       add_track_command(app),
       add_visibility_command(app),

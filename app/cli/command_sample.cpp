@@ -1,0 +1,250 @@
+// `plenopath sample (--plan PLAN.dxf [--layers ...] [--occluders ...] [--units U] --path PATH.json
+//                    [--capture DIR|VIDEO] [--depth DIR] | --project P.plenopath [--save])
+//                   --method uniform|visibility|depth (--count N | --ratio R) [--exponent E] [--boost B]
+//                   [--rule expected_loss|cell_rule] [--pin i,j,...] [--min-spacing M] [--max-spacing M]
+//                   [--photometric-frames N] [--json]`
+// Keyframes in progressive order (key "keyframes") and what they lose: reduction ratio and largest gap
+// always; geometric loss when there is a plan; PSNR/SSIM when the capture's frames can be read.
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/cli/command.h"
+#include "model/error.h"
+#include "model/path_io.h"
+#include "model/project_io.h"
+#include "processing/dxf_import.h"
+#include "processing/frame_source.h"
+#include "processing/sampling/keyframe_sampler.h"
+#include "processing/sampling/sampling_loss.h"
+#include "processing/uniform_sampling.h"
+#include "processing/visibility.h"
+
+namespace plenopath::cli {
+
+namespace {
+
+struct Options {
+  std::string plan, path, capture, depth, project;
+  DxfImportOptions import;
+  bool save = false;
+  SamplingParameters parameters;
+  std::string rule = "expected_loss";
+  std::vector<int> pinned;
+  int photometric_frames = 20;
+  bool json = false;
+};
+
+nlohmann::json geometric_json(const GeometricLoss& g) {
+  return {{"mean", g.mean}, {"p95", g.p95}, {"max", g.max}, {"dropped", g.dropped}, {"evaluated", g.evaluated},
+          {"inexact", g.inexact}};
+}
+
+int run(const Options& o, CLI::App* sub) {
+  const bool from_project = !o.project.empty();
+  if (!from_project && o.path.empty()) {
+    std::cerr << "plenopath sample: give --path PATH.json (with --plan for visibility), or --project P.plenopath\n"
+              << sub->help();
+    return kExitUsage;
+  }
+  if (o.save && !from_project) {
+    std::cerr << "plenopath sample: --save writes the keyframes into the project: it needs --project\n";
+    return kExitUsage;
+  }
+  Project project;
+  if (from_project) project = load_project(o.project);
+  const std::string where = from_project ? o.project : o.path;
+
+  // The plan (optional for uniform and depth).
+  FloorPlan plan;
+  if (!o.plan.empty()) plan = import_dxf(o.plan, o.import);
+  else if (from_project) plan = project.plan;
+  const CameraPath path = from_project ? project.path : read_path_file(o.path);
+  if (path.empty()) throw Error(where + ": the camera path has no frames");
+  std::unique_ptr<VisibilityIndex> index;
+  if (!plan.occluder_segments().empty()) index = std::make_unique<VisibilityIndex>(plan);
+  if (o.parameters.method == "visibility" && !index)
+    throw Error((o.plan.empty() ? where : o.plan) +
+                ": visibility sampling needs a floor plan with walls (give --plan PLAN.dxf)");
+
+  // The capture (optional): frames for the photometric loss, depth maps for depth sampling.
+  std::unique_ptr<FrameSource> source;
+  if (!o.capture.empty()) {
+    namespace fs = std::filesystem;
+    FrameSourceOptions options;
+    std::string frames = o.capture;
+    options.depth_folder = o.depth;
+    // A rendered capture folder (frames/ and depth/ inside) is taken as such.
+    if (fs::is_directory(fs::path(o.capture) / "frames")) {
+      frames = (fs::path(o.capture) / "frames").string();
+      if (options.depth_folder.empty() && fs::is_directory(fs::path(o.capture) / "depth"))
+        options.depth_folder = (fs::path(o.capture) / "depth").string();
+    }
+    source = FrameSource::open(frames, options);
+  } else if (from_project && !project.capture.empty()) {
+    try {
+      source = FrameSource::open_capture(project.capture);
+    } catch (const Error& e) {
+      if (o.parameters.method == "depth") throw;
+      std::cerr << "plenopath sample: warning: " << e.what() << " (no photometric loss)\n";
+    }
+  }
+  auto check_frame = [&](int index) {
+    if (index < 0 || index >= source->frame_count())
+      throw Error(source->source() + ": the path's frame " + std::to_string(index) + " is not in the capture (" +
+                  std::to_string(source->frame_count()) + " frames)");
+  };
+
+  SamplingInputs inputs;
+  inputs.path = &path;
+  inputs.index = index.get();
+  inputs.visibility.rule = visibility_rule_from_string(o.rule);
+  VisibilityCells cells;
+  if (o.parameters.method == "visibility" && inputs.visibility.rule == VisibilityRule::cell_rule) {
+    cells = from_project && !project.visibility.empty() && o.plan.empty() ? project.visibility
+                                                                           : index->cells_along_path(path);
+    inputs.cells = &cells;
+  }
+  std::vector<DepthVolume> volumes;
+  if (o.parameters.method == "depth") {
+    if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
+    if (source->depth_match_count() == 0)
+      throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
+    volumes = depth_volumes_along_path(path, [&](int i) {
+      check_frame(i);
+      if (!source->has_depth(i)) throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
+      return source->read_depth(i);
+    });
+    inputs.depth_volumes = &volumes;
+  }
+  PathEnvelopes envelopes;
+  if (index) {
+    envelopes = compute_path_envelopes(*index, path);
+    inputs.envelopes = &envelopes;
+  }
+
+  const Keyframes keyframes = sample_keyframes(inputs, o.parameters, o.pinned);
+
+  SamplingLoss loss;
+  const SamplingStatistics stats = sampling_statistics(path, keyframes);
+  loss.kept = stats.kept;
+  loss.total = stats.total;
+  loss.reduction_ratio = stats.ratio;
+  loss.largest_gap_m = stats.max_gap_m;
+  if (index) {
+    loss.geometric = geometric_loss(path, keyframes, envelopes);
+    loss.has_geometric = true;
+  }
+  if (source) {
+    PhotometricOptions options;
+    options.max_frames = o.photometric_frames;
+    if (options.max_frames > 0) {
+      loss.photometric = photometric_loss(path, keyframes, [&](int i) {
+        check_frame(i);
+        return source->read(i);
+      }, options);
+      loss.has_photometric = true;
+    }
+  }
+
+  if (o.save) {
+    project.keyframes = keyframes;
+    save_project(project, o.project);
+  }
+
+  const std::vector<int> order = keyframes.progressive_order();
+  nlohmann::json out = {{"method", keyframes.parameters.method},
+                        {"frames", path.size()},
+                        {"budget", keyframe_budget(o.parameters, static_cast<int>(path.size()))},
+                        {"keyframes", order},
+                        {"pinned", o.pinned},
+                        {"reduction_ratio", loss.reduction_ratio},
+                        {"largest_gap_m", loss.largest_gap_m},
+                        {"geometric_loss", nullptr},
+                        {"photometric_loss", nullptr}};
+  if (keyframes.parameters.method == "visibility") out["rule"] = o.rule;
+  if (keyframes.parameters.method != "uniform") {
+    out["exponent"] = o.parameters.exponent;
+    out["boost"] = o.parameters.transition_boost;
+  }
+  if (loss.has_geometric) out["geometric_loss"] = geometric_json(loss.geometric);
+  if (loss.has_photometric && loss.photometric.frames > 0)
+    out["photometric_loss"] = {{"psnr_mean_db", loss.photometric.psnr_mean_db},
+                               {"psnr_min_db", loss.photometric.psnr_min_db},
+                               {"ssim_mean", loss.photometric.ssim_mean},
+                               {"ssim_min", loss.photometric.ssim_min},
+                               {"frames", loss.photometric.frames}};
+  if (o.save) out["saved"] = o.project;
+  if (o.json) {
+    std::cout << out.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::cout << std::fixed << std::setprecision(3) << "Method     " << keyframes.parameters.method << "\nKept       "
+            << loss.kept << " of " << loss.total << " frames (" << std::setprecision(1) << loss.reduction_ratio
+            << " : 1), largest gap " << std::setprecision(2) << loss.largest_gap_m << " m\n";
+  if (loss.has_geometric)
+    std::cout << std::setprecision(4) << "Geometric  mean " << loss.geometric.mean << ", p95 " << loss.geometric.p95
+              << " (1 - IoU of envelopes, " << loss.geometric.evaluated << " dropped frames)\n";
+  if (loss.has_photometric && loss.photometric.frames > 0)
+    std::cout << std::setprecision(2) << "Photometric PSNR " << loss.photometric.psnr_mean_db << " dB, SSIM "
+              << std::setprecision(3) << loss.photometric.ssim_mean << " (" << loss.photometric.frames << " frames)\n";
+  std::cout << "Keyframes  (coarse to fine)";
+  for (int i : order) std::cout << " " << i;
+  std::cout << "\n";
+  if (o.save) std::cout << "Saved      " << o.project << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_sample_command(CLI::App& parent) {
+  auto o = std::make_shared<Options>();
+  o->parameters.method = "";
+  CLI::App* sub = parent.add_subcommand("sample", "Keyframes along the path (uniform, visibility or depth) and what they lose");
+  auto* plan = sub->add_option("--plan", o->plan, "Floor plan (*.dxf, ASCII)");
+  sub->add_option("--layers", o->import.layers, "Import only these layers (default: all)");
+  sub->add_option("--occluders", o->import.occluder_layers, "Layers that block sight (default: guessed from the names)");
+  sub->add_option("--units", o->import.units_override, "Units of the plan file (mm, cm, m, in, ft, ...)");
+  auto* path = sub->add_option("--path", o->path, "Path file (JSON, metres)");
+  auto* capture = sub->add_option("--capture", o->capture,
+                                  "Frames (folder or video; a folder holding frames/ and depth/ is taken apart)");
+  sub->add_option("--depth", o->depth, "Depth maps folder (16-bit PNG mm or EXR m), for --method depth");
+  auto* project = sub->add_option("--project", o->project, "Project file: plan, path and capture from it");
+  project->excludes(path)->excludes(capture);
+  sub->add_flag("--save", o->save, "Write the keyframes into the project (--project)");
+  sub->add_option("--method", o->parameters.method, "uniform, visibility or depth")
+      ->required()
+      ->check(CLI::IsMember({"uniform", "visibility", "depth"}));
+  auto* count = sub->add_option("--count", o->parameters.count, "Budget: number of keyframes")->check(CLI::PositiveNumber);
+  auto* ratio = sub->add_option("--ratio", o->parameters.ratio, "Budget: frames per keyframe (reduction ratio)")
+                    ->check(CLI::PositiveNumber);
+  count->excludes(ratio);
+  sub->add_option("--exponent", o->parameters.exponent, "Exponent e of the cell rule l^e / v (default 3)")
+      ->check(CLI::Range(0.0, 10.0));
+  sub->add_option("--boost", o->parameters.transition_boost, "Transition boost of the cell rule (default 1)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--rule", o->rule, "Visibility rule: expected_loss (default) or cell_rule (the seed's l^e / v)")
+      ->check(CLI::IsMember({"expected_loss", "cell_rule"}));
+  sub->add_option("--pin", o->pinned, "Frames always kept (capture indices)")->delimiter(',');
+  sub->add_option("--min-spacing", o->parameters.min_spacing_m, "Minimum metres between keyframes")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--max-spacing", o->parameters.max_spacing_m, "Maximum metres between keyframes (0 = none)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--photometric-frames", o->photometric_frames,
+                  "Dropped frames compared by PSNR/SSIM when frames are readable (0 = skip)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--json", o->json, "Machine-readable output");
+  (void)plan;
+  return {sub, [o, sub, count, ratio]() {
+            if (count->count() == 0 && ratio->count() == 0) {
+              std::cerr << "plenopath sample: give a budget, --count N or --ratio R\n" << sub->help();
+              return kExitUsage;
+            }
+            if (count->count() > 0) o->parameters.ratio = 1.0;  // unused with a count
+            return run(*o, sub);
+          }};
+}
+
+}  // namespace plenopath::cli
