@@ -4,6 +4,7 @@
 // (x = 1..7 at y = 3.5, 30 frames), so the expected bends are computed by hand below.
 #include <QAction>
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QMouseEvent>
 #include <QTableWidget>
 #include <QTest>
@@ -357,6 +358,42 @@ TEST(Anchors, AnchorsPlacedOneByOneUndoDrift) {
   std::printf("  the warp alone: ATE %.3f m\n", warped);
   while (doc.undo_stack()->canUndo()) doc.undo_stack()->undo();
   EXPECT_EQ(doc.project().path, drifted);
+}
+
+// How interactive a drag is on a long path (printed for the report; speed targets live in bench_anchors):
+// the office sample's whole walk, ~2 900 frames, each move recomputing the preview and redrawing the map.
+TEST(Anchors, DragOnALongPathPrintsItsFrameTime) {
+  Project project;
+  project.plan = make_office_sample_plan();
+  project.path = auto_walk(project.plan);
+  widgets::ProjectDocument doc;
+  doc.reset(project, QString());
+  widgets::MapView map(doc);
+  map.resize(900, 600);
+  map.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&map));
+  map.reset_camera();
+  map.render_now();
+  const PathFrame& f = doc.project().path.frames[doc.project().path.size() / 3];
+  const QPoint from = map.widget_pixel_of(f.position());
+  const int moves = 8;
+  QElapsedTimer clock;
+  clock.start();
+  for (int k = 0; k < moves; ++k) map.render_now();
+  const double ms_per_render = clock.nsecsElapsed() / 1e6 / moves;
+  send_mouse(&map, QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::ControlModifier);
+  clock.restart();
+  for (int k = 1; k <= moves; ++k) {
+    send_mouse(&map, QEvent::MouseMove, from + QPoint(2 * k, k), Qt::LeftButton, Qt::ControlModifier);
+    map.render_now();
+  }
+  const double ms_per_move = clock.nsecsElapsed() / 1e6 / moves;
+  clock.restart();
+  send_mouse(&map, QEvent::MouseButtonRelease, from + QPoint(2 * moves, moves), Qt::NoButton, Qt::ControlModifier);
+  const double release_ms = clock.nsecsElapsed() / 1e6;
+  std::printf("drag on a %zu-frame path: %.1f ms per move (preview + redraw; a redraw alone %.1f ms), release "
+              "(refinement) %.0f ms\n", doc.project().path.size(), ms_per_move, ms_per_render, release_ms);
+  EXPECT_EQ(doc.project().anchors.size(), 1u);
 }
 
 }  // namespace
