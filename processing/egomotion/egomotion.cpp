@@ -91,6 +91,7 @@ std::string EgomotionOptions::check() const {
   if (!(keyframe_parallax_deg > 0)) o << "keyframe_parallax_deg must be > 0; ";
   if (!(keyframe_max_turn_deg > 0)) o << "keyframe_max_turn_deg must be > 0; ";
   if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) o << "keyframe_min_shared must be in (0, 1); ";
+  if (!(max_step_turn_disagreement_deg > 0)) o << "max_step_turn_disagreement_deg must be > 0; ";
   if (!(min_triangulation_deg > 0)) o << "min_triangulation_deg must be > 0; ";
   if (!(max_initial_error_deg > 0)) o << "max_initial_error_deg must be > 0; ";
   if (min_point_keyframes < 2) o << "min_point_keyframes must be >= 2; ";
@@ -179,6 +180,15 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   const double deg = M_PI / 180.0;
   const int width = s.klt.width();
   const double pixel_angle = 2.0 * M_PI / std::max(1, width);
+  // Angular tolerances are set for a 1024-wide working image; a coarser one measures coarser, and holding
+  // it to sub-pixel tolerances leaves RANSAC too few inliers and puts every residual in the robust loss's
+  // flat tail.
+  const double coarseness = std::max(1.0, 1024.0 / std::max(1, width));
+  PlanarTwoViewOptions two_view = opt.two_view;
+  two_view.threshold *= coarseness;
+  RefinementOptions refinement = opt.refinement;
+  refinement.loss_scale *= coarseness;
+  refinement.outlier_threshold *= coarseness;
 
   // ---- 1. coarse headings
   report("headings", 0.0);
@@ -199,6 +209,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   };
   auto bearing = [&](int t, int frame) { return s.klt.bearing(*observation(t, frame)); };
 
+  std::mt19937 rng(opt.seed);
   std::vector<PathFrame> frames(n);
   for (int i = 0; i < n; ++i) frames[i].index = i;
   std::vector<bool> textureless(n, false);
@@ -214,6 +225,41 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       add_flag(frames[i], kFrameJump, "jump: the ring image does not register with the previous frame");
   }
 
+  // ---- 1b. frame-to-frame turns from the KLT tracks. The rings are coarse indoors (parallax of near walls
+  // biases them by degrees, and they drift); the tracks between consecutive frames give each turn to a few
+  // hundredths of a degree: the median azimuth change (exact for a turn on the spot), refined by planar
+  // two-view geometry when the frames moved enough. Frames without enough tracks keep the ring's turn.
+  std::vector<double> heading(n, 0.0);
+  {
+    PlanarTwoViewOptions step_options = two_view;
+    step_options.turn_scan_deg = 0;
+    step_options.iterations = 32;
+    const double max_disagreement = opt.max_step_turn_disagreement_deg * deg;
+    for (int f = 1; f < n; ++f) {
+      const double ring_turn = rh.headings[f] - rh.headings[f - 1];
+      std::vector<Eigen::Vector3d> ba, bb;
+      std::vector<double> azimuth_change;
+      for (int t : frame_tracks[f]) {
+        if (!observation(t, f - 1)) continue;
+        const Eigen::Vector3d a = bearing(t, f - 1), b = bearing(t, f);
+        azimuth_change.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
+        // A spread subset is plenty for the two-view turn (tracks are in detection order, i.e. spread).
+        if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || frame_tracks[f].size() < 480)) {
+          ba.push_back(a);
+          bb.push_back(b);
+        }
+      }
+      double turn = ring_turn;
+      if (static_cast<int>(azimuth_change.size()) >= two_view.min_inliers) {
+        turn = median(azimuth_change);
+        const PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn, step_options, rng);
+        if (rel.valid && std::abs(rel.turn - turn) < max_disagreement) turn = rel.turn;
+      }
+      heading[f] = heading[f - 1] + turn;
+    }
+  }
+  result.tracked_headings = heading;
+
   // ---- 2a. keyframes (chunk cuts)
   std::vector<int> keyframes = {0};
   for (int f = 1; f < n; ++f) {
@@ -222,14 +268,14 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     std::vector<double> parallax;
     for (int t : frame_tracks[kf]) {
       if (!observation(t, f)) continue;
-      const Eigen::Vector3d a = rotate_z(bearing(t, kf), rh.headings[kf]);
-      const Eigen::Vector3d b = rotate_z(bearing(t, f), rh.headings[f]);
+      const Eigen::Vector3d a = rotate_z(bearing(t, kf), heading[kf]);
+      const Eigen::Vector3d b = rotate_z(bearing(t, f), heading[f]);
       parallax.push_back(std::atan2(a.cross(b).norm(), a.dot(b)));
     }
     const double shared = frame_tracks[kf].empty() ? 0.0 : double(parallax.size()) / frame_tracks[kf].size();
     const bool cut = median(parallax) > opt.keyframe_parallax_deg * deg || shared < opt.keyframe_min_shared ||
                      parallax.size() < 60 ||
-                     std::abs(rh.headings[f] - rh.headings[kf]) > opt.keyframe_max_turn_deg * deg || f == n - 1;
+                     std::abs(heading[f] - heading[kf]) > opt.keyframe_max_turn_deg * deg || f == n - 1;
     if (cut) keyframes.push_back(f);
   }
   const int kfn = static_cast<int>(keyframes.size());
@@ -239,11 +285,10 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
 
   // ---- 2b. chain the chunks: direction by two-view RANSAC, length by resection against known points
   std::vector<Eigen::Vector3d> kf_pose(kfn, Eigen::Vector3d::Zero());
-  kf_pose[0].z() = rh.headings[keyframes[0]];
+  kf_pose[0].z() = heading[keyframes[0]];
   std::vector<Eigen::Vector3d> point(tracks.size(), Eigen::Vector3d::Zero());
   std::vector<char> point_valid(tracks.size(), 0);
   std::vector<bool> kf_bridged(kfn, false);
-  std::mt19937 rng(opt.seed);
   double last_length = 1.0, last_direction = kf_pose[0].z();
   auto triangulate_track = [&](int t, int up_to_kf) {
     const auto& obs = tracks[t].observations;
@@ -270,8 +315,10 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       bb.push_back(bearing(t, b));
       shared.push_back(t);
     }
-    const double turn_guess = rh.headings[b] - rh.headings[a];
-    const PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, opt.two_view, rng);
+    const double turn_guess = heading[b] - heading[a];
+    PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
+    // The tracked turn is good to a fraction of a degree: a two-view turn far from it is a wrong solution.
+    if (rel.valid && std::abs(rel.turn - turn_guess) > opt.max_step_turn_disagreement_deg * deg) rel.valid = false;
     Eigen::Vector3d& pa = kf_pose[k - 1];
     Eigen::Vector3d& pb = kf_pose[k];
     pb.z() = pa.z() + (rel.valid ? rel.turn : turn_guess);
@@ -301,7 +348,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       } else {
         length = std::max(0.0, median(lengths));
       }
-    } else if (rel.median_parallax < opt.two_view.min_parallax && !ba.empty()) {
+    } else if (rel.median_parallax < two_view.min_parallax && !ba.empty()) {
       length = 0.0;  // a turn on the spot: no translation to see
     } else {
       length = last_length;  // cannot solve this stretch: bridge it with the previous step
@@ -324,13 +371,13 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     const int k0 = k1 - 1;
     if (k1 >= kfn) {
       Eigen::Vector3d p = kp[k0];
-      p.z() += rh.headings[f] - rh.headings[keyframes[k0]];
+      p.z() += heading[f] - heading[keyframes[k0]];
       return p;
     }
     const double w = double(f - keyframes[k0]) / (keyframes[k1] - keyframes[k0]);
     Eigen::Vector3d p = (1 - w) * kp[k0] + w * kp[k1];
-    const double off0 = kp[k0].z() - rh.headings[keyframes[k0]], off1 = kp[k1].z() - rh.headings[keyframes[k1]];
-    p.z() = rh.headings[f] + (1 - w) * off0 + w * off1;
+    const double off0 = kp[k0].z() - heading[keyframes[k0]], off1 = kp[k1].z() - heading[keyframes[k1]];
+    p.z() = heading[f] + (1 - w) * off0 + w * off1;
     return p;
   };
   std::vector<Eigen::Vector3d> coarse(n);
@@ -349,7 +396,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
          it != keyframes.end() && *it <= to.back().frame; ++it) {
       const int k = static_cast<int>(it - keyframes.begin());
       const Eigen::Vector3d b = bearing(t, *it);
-      if (ray_error(kf_pose[k], point[t], b) > opt.max_initial_error_deg * deg) continue;
+      if (ray_error(kf_pose[k], point[t], b) > opt.max_initial_error_deg * coarseness * deg) continue;
       obs.push_back({k, static_cast<int>(problem.points.size()), b});
     }
     if (static_cast<int>(obs.size()) < opt.min_point_keyframes) continue;
@@ -360,13 +407,13 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   result.points = static_cast<int>(problem.points.size());
   result.observations = static_cast<int>(problem.observations.size());
   if (!report("refinement", 0.0)) return finish_cancelled();
-  result.refinement = refine_bundle(problem, opt.refinement, [&](double f) { return report("refinement", f); });
+  result.refinement = refine_bundle(problem, refinement, [&](double f) { return report("refinement", f); });
   if (result.refinement.cancelled || cancelled) return finish_cancelled();
   const std::vector<Eigen::Vector3d> refined_kf = problem.poses;
 
   // ---- every frame against the refined points
   std::vector<Eigen::Vector3d> pose(n);
-  const double inlier_threshold = std::max(4.0 * opt.refinement.loss_scale, 3.0 * pixel_angle);
+  const double inlier_threshold = std::max(4.0 * refinement.loss_scale, 3.0 * pixel_angle);
   for (int f = 0; f < n; ++f) {
     pose[f] = interpolate(refined_kf, f);
     std::vector<Eigen::Vector3d> pts, brs;
@@ -379,7 +426,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       pose[f] = refined_kf[kf_of_frame[f]];
     } else if (static_cast<int>(pts.size()) >= opt.resection_min_points) {
       Eigen::Vector3d p = pose[f];
-      const int inliers = resect_pose(&p, pts, brs, opt.refinement.loss_scale, inlier_threshold);
+      const int inliers = resect_pose(&p, pts, brs, refinement.loss_scale, inlier_threshold);
       if (inliers >= opt.resection_min_points) {
         pose[f] = p;
       } else {

@@ -3,6 +3,8 @@
 // defaults and check(), a streaming add_frame() (ring image + KLT per frame, so frames are read once) and
 // finish() that runs the geometric steps with a progress/cancel callback:
 //   1. coarse headings from ring images (ring_heading.h);
+//   1b. frame-to-frame turns from the KLT tracks (median azimuth change refined by planar two-view),
+//      chained: the heading guide of the later steps (the rings bridge frames without tracks);
 //   2. keyframes ("chunks": cut when the scene has moved enough or the heading has turned), the direction
 //      of each step by planar two-view RANSAC on bearings, its length by bearing-only resection against the
 //      points triangulated so far, chained into (x, y);
@@ -33,6 +35,9 @@ struct EgomotionOptions {
   double keyframe_parallax_deg = 2.0;   // median rotation-free parallax since the last keyframe that makes one
   double keyframe_max_turn_deg = 8.0;   // heading change since the last keyframe that cuts a chunk
   double keyframe_min_shared = 0.5;     // fraction of the last keyframe's tracks still seen; below it, cut
+  // A two-view turn (consecutive frames, or keyframes) this far from the turn the tracks' azimuths suggest
+  // is taken for a wrong solution.
+  double max_step_turn_disagreement_deg = 3.0;
   double min_triangulation_deg = 1.0;   // rays of a point must span at least this angle
   double max_initial_error_deg = 1.0;   // observations this far off after initialisation are dropped
   int min_point_keyframes = 3;          // a point enters the refinement when seen from this many keyframes
@@ -54,6 +59,7 @@ struct EgomotionOptions {
 struct EgomotionResult {
   CameraPath path;                     // one pose per frame, headings radians; frame 0 at (0, 0), heading 0
   std::vector<double> ring_headings;   // step 1's headings per frame (radians, frame 0 = 0)
+  std::vector<double> tracked_headings;  // frame-to-frame turns from the KLT tracks, chained (radians)
   std::vector<Eigen::Vector3d> coarse_poses;  // step 2's (x, y, heading) per frame, final scale
   std::vector<int> keyframes;          // frame indices
   int points = 0;

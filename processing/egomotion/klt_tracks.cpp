@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <sstream>
@@ -115,9 +116,17 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       if (x < 0) x += width_;
       if (x >= width_) x -= width_;
       FeatureTrack& track = tracks_[live_[k]];
-      if (options_.max_track_frames > 0 && static_cast<int>(track.observations.size()) >= options_.max_track_frames) {
-        // Continue as a new point from here (see KltOptions::max_track_frames).
+      // Each track's own limit, between half and all of max_track_frames: tracks born together (all of
+      // frame 0's) must not be cut together, or the points before and after that frame would share no
+      // track, and the two halves of the map would each keep their own scale.
+      const int limit = options_.max_track_frames -
+                        static_cast<int>((static_cast<std::uint64_t>(live_[k]) * 2654435761u) %
+                                         static_cast<std::uint64_t>(options_.max_track_frames / 2 + 1));
+      if (options_.max_track_frames > 0 && static_cast<int>(track.observations.size()) >= limit) {
+        // Continue as a new point from here (see KltOptions::max_track_frames). The new track starts one
+        // frame back: its first pair of frames is then measured by the same track.
         FeatureTrack next;
+        next.observations.push_back(track.observations.back());
         next.observations.push_back({frame_index, x, y});
         tracks_.push_back(std::move(next));
         still_live.push_back(static_cast<int>(tracks_.size()) - 1);

@@ -23,7 +23,9 @@ struct KltOptions {
   double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
   // A track longer than this many frames is cut and continued as a new track (a new 3-D point): frame-to-
   // frame KLT drifts (the equirect distortion around a feature changes as the camera moves), and a short
-  // track keeps that drift below the refinement's noise. 0 = never cut.
+  // track keeps that drift below the refinement's noise. Each track is cut after between half and all of
+  // this (staggered, so tracks born together do not end together); the continuation shares the cut
+  // track's last observation. 0 = never cut.
   int max_track_frames = 24;
   std::string check() const;      // empty when valid
 };

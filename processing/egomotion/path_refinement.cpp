@@ -138,6 +138,26 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   return !callback.cancelled;
 }
 
+// Moves the poses after `last` and the points first seen after it by the rigid motion that took pose
+// `last` from `before` to `after`.
+void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, int last,
+                 const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
+  const double turn = after.z() - before.z();
+  const double c = std::cos(turn), s = std::sin(turn);
+  auto move = [&](double* x, double* y) {
+    const double dx = *x - before.x(), dy = *y - before.y();
+    *x = after.x() + c * dx - s * dy;
+    *y = after.y() + s * dx + c * dy;
+  };
+  for (size_t i = last + 1; i < p.poses.size(); ++i) {
+    move(&p.poses[i].x(), &p.poses[i].y());
+    p.poses[i].z() += turn;
+  }
+  for (size_t q = 0; q < p.points.size(); ++q)
+    if (first_pose_of_point[q] > last && first_pose_of_point[q] < static_cast<int>(p.poses.size()))
+      move(&p.points[q].x(), &p.points[q].y());
+}
+
 }  // namespace
 
 std::string RefinementOptions::check() const {
@@ -180,6 +200,9 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     return report;
   }
   const bool windowed = options.window_keyframes > 0 && n > options.window_keyframes;
+  std::vector<int> first_pose_of_point(problem.points.size(), n);
+  for (const BundleObservation& o : problem.observations)
+    first_pose_of_point[o.point] = std::min(first_pose_of_point[o.point], o.pose);
   const double windowed_share = windowed ? (options.global_max_iterations > 0 ? 0.5 : 1.0) : 0.0;
   if (windowed) {
     const int stride = options.window_keyframes - options.window_overlap;
@@ -189,12 +212,17 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       const int held_end = w == 0 ? 1 : first + options.window_overlap;
       const double begin = windowed_share * w / windows, end = windowed_share * (w + 1) / windows;
       ++report.windows;
+      const Eigen::Vector3d last_before = problem.poses[last];
       if (!solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress, begin, end,
                        &report)) {
         report.cancelled = true;
         report.final_rms = rms(observation_errors(problem));
         return report;
       }
+      // The poses and points beyond the window have not moved yet: carry them along with the window's last
+      // pose, so that the next window does not start from a kink (held poses corrected, free ones not),
+      // which can trap its first free poses in a wrong minimum.
+      carry_along(problem, first_pose_of_point, last, last_before, problem.poses[last]);
     }
   }
   if (options.global_max_iterations > 0) {

@@ -2,13 +2,18 @@
 // truth), encodes the frames as JPEG in memory (a capture), tracks them and prints one JSON object: heading
 // RMS after step 1 (rings), after step 2 (chaining) and after refinement, ATE in metres and % of the path
 // length, scale error with the camera-height scale, and frames/s with decoding excluded.
-// Runs: 1024x512 clean, 1024x512 with noise + people, and (PLENOPATH_BENCH_LARGE=1) 2048x1024.
-// Usage: bench_track [--frames N] [--width W] [--noise] [--only]  (--only: just that one run)
+// Runs: 1024x512 clean, 1024x512 with noise + people, 2048x1024 clean, and a long run (10 000 frames of
+// 512x256 rendered on the fly through FrameSource::from_generator: the walk there and back, with turns on
+// the spot) that checks time and memory scale. PLENOPATH_BENCH_QUICK=1 leaves out the 2048 and long runs.
+// Usage: bench_track [--frames N] [--width W] [--noise] [--long] [--only]  (--only: just that one run)
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -16,6 +21,7 @@
 
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "processing/frame_source.h"
 #include "rig/synthetic_camera.h"
 
 using namespace plenopath;
@@ -26,7 +32,42 @@ struct RunSpec {
   int frames = 400;
   int width = 1024;
   bool noise = false;
+  bool long_walk = false;  // frames rendered on the fly (not kept), the walk repeated there and back
 };
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+// The office walk, then a turn on the spot, the walk back, a turn, ... until `frames` frames: a continuous
+// trolley path of any length.
+CameraPath there_and_back(const CameraPath& walk, int frames) {
+  CameraPath out;
+  const int turn_frames = 30;  // 180 deg in 30 frames: 6 deg per frame
+  bool forward = true;
+  double heading_offset = 0.0;
+  while (static_cast<int>(out.size()) < frames) {
+    for (size_t k = 0; k < walk.size() && static_cast<int>(out.size()) < frames; ++k) {
+      PathFrame f = walk.frames[forward ? k : walk.size() - 1 - k];
+      f.heading = wrap_angle(f.heading + heading_offset);
+      f.index = static_cast<int>(out.size());
+      f.file.clear();
+      out.frames.push_back(f);
+    }
+    const PathFrame last = out.frames.back();
+    for (int k = 1; k <= turn_frames && static_cast<int>(out.size()) < frames; ++k) {
+      PathFrame f = last;
+      f.heading = wrap_angle(last.heading + M_PI * k / turn_frames);
+      f.index = static_cast<int>(out.size());
+      out.frames.push_back(f);
+    }
+    forward = !forward;
+    heading_offset = forward ? 0.0 : M_PI;
+  }
+  return out;
+}
 
 double heading_rms_deg(const std::vector<double>& estimate, const CameraPath& truth) {
   // Best constant offset removed (the estimate's frame 0 is heading 0).
@@ -46,8 +87,8 @@ nlohmann::json run(const RunSpec& spec) {
   SceneOptions scene_options;
   const SyntheticScene scene = build_synthetic_scene(plan, scene_options);
   AutoWalkOptions walk;
-  walk.max_frames = spec.frames;
-  const CameraPath truth = auto_walk(plan, walk);
+  walk.max_frames = spec.long_walk ? 0 : spec.frames;
+  const CameraPath truth = spec.long_walk ? there_and_back(auto_walk(plan, walk), spec.frames) : auto_walk(plan, walk);
   RenderOptions render;
   render.width = spec.width;
   render.height = spec.width / 2;
@@ -57,26 +98,39 @@ nlohmann::json run(const RunSpec& spec) {
     render.exposure_drift = 0.1;
     render.people = 6;
   }
-  const auto t_render = std::chrono::steady_clock::now();
-  std::vector<std::vector<unsigned char>> jpegs(truth.size());
-  for (size_t i = 0; i < truth.size(); ++i) {
-    const RenderedPanorama p = render_panorama(scene, truth.frames[i], render);
-    cv::imencode(".jpg", p.rgb, jpegs[i], {cv::IMWRITE_JPEG_QUALITY, 92});
-  }
-  const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
-
   EgomotionOptions options;
   options.camera_height_m = scene_options.camera_height;
-  double decode_s = 0;
+  double render_s = 0, decode_s = 0;
+  auto seconds = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  // Captures of up to a few hundred frames are rendered first and kept as JPEG (decoding timed apart); the
+  // long one is rendered frame by frame as the tracker asks (rendering timed apart), so memory shows what
+  // the tracker itself keeps.
+  std::vector<std::vector<unsigned char>> jpegs;
+  std::unique_ptr<FrameSource> generated;
+  if (spec.long_walk) {
+    generated = FrameSource::from_generator(static_cast<int>(truth.size()), render.width, render.height, 30.0,
+                                            [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; });
+  } else {
+    const auto t_render = std::chrono::steady_clock::now();
+    jpegs.resize(truth.size());
+    for (size_t i = 0; i < truth.size(); ++i) {
+      const RenderedPanorama p = render_panorama(scene, truth.frames[i], render);
+      cv::imencode(".jpg", p.rgb, jpegs[i], {cv::IMWRITE_JPEG_QUALITY, 92});
+    }
+    render_s = seconds(t_render);
+  }
+  const double rss_before_mb = peak_rss_mb();
   const auto t0 = std::chrono::steady_clock::now();
-  const EgomotionResult r = EgomotionTracker::run(static_cast<int>(jpegs.size()), [&](int i) {
+  const EgomotionResult r = EgomotionTracker::run(static_cast<int>(truth.size()), [&](int i) {
     const auto t = std::chrono::steady_clock::now();
-    cv::Mat m = cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
-    decode_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    cv::Mat m = generated ? generated->read(i) : cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
+    (generated ? render_s : decode_s) += seconds(t);
     return m;
   }, options);
-  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double track_s = total_s - decode_s;
+  const double total_s = seconds(t0);
+  const double track_s = total_s - decode_s - (generated ? render_s : 0.0);
 
   const PathErrors e = evaluate_path(r.path, truth);
   if (std::getenv("PLENOPATH_BENCH_DUMP")) {
@@ -98,6 +152,9 @@ nlohmann::json run(const RunSpec& spec) {
   // Scale error of the metric (camera-height) path: rigid alignment would mix in ATE; the similarity's
   // scale says how far the estimate's metres are off.
   return {{"frames", truth.size()},
+          {"rendered_on_the_fly", spec.long_walk},
+          {"peak_rss_mb", peak_rss_mb()},
+          {"peak_rss_mb_before_tracking", rss_before_mb},
           {"size", {render.width, render.height}},
           {"noise_and_people", spec.noise},
           {"path_length_m", e.truth_length_m},
@@ -105,6 +162,7 @@ nlohmann::json run(const RunSpec& spec) {
           {"points", r.points},
           {"observations", r.observations},
           {"heading_rms_deg_rings", heading_rms_deg(r.ring_headings, truth)},
+          {"heading_rms_deg_tracked", heading_rms_deg(r.tracked_headings, truth)},
           {"heading_rms_deg_chained", ec.rot_rms_deg},
           {"heading_rms_deg_refined", e.rot_rms_deg},
           {"ate_m_chained", ec.ate_rms_m},
@@ -121,7 +179,8 @@ nlohmann::json run(const RunSpec& spec) {
           {"flagged_frames", r.flagged_frames},
           {"seconds_frames_stage", r.seconds_per_frame_stage},
           {"seconds_geometry", r.seconds_geometry},
-          {"seconds_decoding_excluded", decode_s},
+          {"seconds_decoding_excluded", track_s},
+          {"seconds_decoding", decode_s},
           {"frames_per_second", truth.size() / track_s},
           {"seconds_render", render_s}};
 }
@@ -135,6 +194,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) spec.frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) spec.width = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--noise")) spec.noise = true;
+    else if (!std::strcmp(argv[i], "--long")) spec.long_walk = true;
     else if (!std::strcmp(argv[i], "--only")) only = true;
   }
   nlohmann::json out;
@@ -143,10 +203,13 @@ int main(int argc, char** argv) {
     if (only) {
       out["runs"].push_back(run(spec));
     } else {
-      out["runs"].push_back(run({spec.frames, 1024, false}));
-      out["runs"].push_back(run({spec.frames, 1024, true}));
-      const char* large = std::getenv("PLENOPATH_BENCH_LARGE");
-      if (large && std::string(large) == "1") out["runs"].push_back(run({spec.frames, 2048, false}));
+      out["runs"].push_back(run({spec.frames, 1024, false, false}));
+      out["runs"].push_back(run({spec.frames, 1024, true, false}));
+      const char* quick = std::getenv("PLENOPATH_BENCH_QUICK");
+      if (!quick || std::string(quick) != "1") {
+        out["runs"].push_back(run({spec.frames, 2048, false, false}));
+        out["runs"].push_back(run({10000, 512, false, true}));
+      }
     }
   } catch (const std::exception& e) {
     out["error"] = e.what();

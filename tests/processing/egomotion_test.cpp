@@ -196,6 +196,35 @@ TEST(Egomotion, SameInputGivesTheSameResultBitForBit) {
   }
 }
 
+// Sensor noise, a slow exposure drift and people walking through the scene (the renderer's realism
+// switches): no crash, every frame placed, and the path within the 2 % of its length.
+TEST(Egomotion, NoiseAndMovingPeopleStayWithinTwoPercent) {
+  const FloorPlan plan = make_office_sample_plan();
+  const SyntheticScene scene = build_synthetic_scene(plan);
+  AutoWalkOptions walk_options;
+  walk_options.max_frames = 60;
+  const CameraPath truth = auto_walk(plan, walk_options);
+  RenderOptions render;
+  render.width = 512;
+  render.height = 256;
+  render.depth = false;
+  render.noise_sigma = 3.0;
+  render.exposure_drift = 0.1;
+  render.people = 8;
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
+      options);
+  ASSERT_EQ(r.path.size(), truth.size());
+  for (const PathFrame& f : r.path.frames) ASSERT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.heading));
+  const PathErrors e = evaluate_path(r.path, truth);
+  EXPECT_EQ(e.frames_matched, 60);
+  EXPECT_LT(e.ate_pct, 2.0);
+  EXPECT_LT(e.rot_rms_deg, 2.0);
+  EXPECT_LT(e.scale_error_pct, 10.0);
+}
+
 TEST(Egomotion, CancelDuringRefinementStopsCleanly) {
   const Walk& walk = short_walk();
   EgomotionOptions options;
