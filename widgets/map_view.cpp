@@ -631,7 +631,16 @@ void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
     drag_.preview = path;
     emit message(QString::fromStdString(e.what()));
   }
-  // The path before the drag stays as a grey ghost under the bent one.
+  set_path_geometry(drag_.preview);
+  rebuild_anchors(drag_.preview, drag_.anchors);
+  char text[160];
+  std::snprintf(text, sizeof text, "anchor frame %d -> (%.2f, %.2f) m%s  ·  Esc cancels", drag_.frame,
+                drag_.target.x(), drag_.target.y(), drag_.snapped ? "  [snapped to a plan corner]" : "");
+  caption_->SetInput(text);
+  request_render();
+  if (drag_.ghost_drawn) return;
+  // The path before the drag stays as a grey ghost under the bent one (drawn once per drag).
+  drag_.ghost_drawn = true;
   vtkNew<vtkPoints> ghost_points;
   vtkNew<vtkCellArray> ghost_lines;
   for (std::size_t i = 0; i < path.size(); ++i)
@@ -642,13 +651,6 @@ void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
   ghost->SetPoints(ghost_points);
   ghost->SetLines(ghost_lines);
   set_polydata(ghost_path_actor_, ghost);
-  set_path_geometry(drag_.preview);
-  rebuild_anchors(drag_.preview, drag_.anchors);
-  char text[160];
-  std::snprintf(text, sizeof text, "anchor frame %d -> (%.2f, %.2f) m%s  ·  Esc cancels", drag_.frame,
-                drag_.target.x(), drag_.target.y(), drag_.snapped ? "  [snapped to a plan corner]" : "");
-  caption_->SetInput(text);
-  request_render();
 }
 
 void MapView::end_anchor_drag(bool apply) {

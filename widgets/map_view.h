@@ -99,6 +99,7 @@ class MapView : public QVTKOpenGLNativeWidget {
     bool valid = false;       // the preview could be computed
     Anchors anchors;          // the document's anchors with the dragged one moved
     CameraPath preview;       // the path bent by them
+    bool ghost_drawn = false; // the path before the drag is drawn (once per drag)
   };
 
   ProjectDocument& document_;
