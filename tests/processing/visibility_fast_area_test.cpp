@@ -300,6 +300,39 @@ TEST(VisibilityFastArea, DegenerateGeometryAndGridAlignedPoints) {
               fast.area_counts().exact);
 }
 
+// Crossing, touching and axis-aligned free-standing walls, queried very near plan vertices (1 nm to 1 mm)
+// and on lines through pairs of vertices: the fast answer equals the exact one, whichever path gives it.
+TEST(VisibilityFastArea, NearVerticesAndOnVertexLines) {
+  std::mt19937 rng(99);
+  std::size_t queries = 0, fallbacks = 0;
+  for (int plan_index = 0; plan_index < 6; ++plan_index) {
+    FloorPlan plan;
+    add_polygon(&plan, {{0, 0}, {20, 0}, {20, 15}, {0, 15}});
+    std::uniform_real_distribution<double> ux(1, 19), uy(1, 14), length(0.2, 2), angle(0, M_PI);
+    for (int k = 0; k < 15; ++k) {
+      const Vec c(ux(rng), uy(rng));
+      const double a = k % 5 == 0 ? 0.0 : k % 7 == 0 ? M_PI / 2 : angle(rng);
+      add_wall(&plan, c, c + length(rng) * Vec(std::cos(a), std::sin(a)));
+    }
+    const VisibilityIndex fast(plan), exact(plan, exact_options());
+    const auto vertices = fast.vertices();
+    std::uniform_real_distribution<double> exponent(-9, -3), direction(0, 2 * M_PI), along(-1, 2);
+    for (int k = 0; k < 300; ++k) {
+      const Vec a = vertices[rng() % vertices.size()], b = vertices[rng() % vertices.size()];
+      const double r = std::pow(10.0, exponent(rng)), t = direction(rng);
+      const Vec p = k % 2 ? Vec(a + r * Vec(std::cos(t), std::sin(t))) : Vec(a + along(rng) * (b - a));
+      if (fast.classify(p) != EnvelopeStatus::ok) continue;
+      ++queries;
+      ASSERT_NEAR(fast.envelope_area(p) / exact.envelope_area(p), 1.0, 1e-9)
+          << "plan " << plan_index << " p " << p.x() << " " << p.y();
+    }
+    fallbacks += fast.area_counts().exact;
+  }
+  EXPECT_GT(queries, 1000u);
+  EXPECT_LT(fallbacks * 20, queries);  // under 5 %
+  std::printf("near vertices and on vertex lines: %zu queries, %zu exact fallbacks\n", queries, fallbacks);
+}
+
 // The office sample along its default walk: areas against the ray caster, and the critical lines drawn for
 // the cell decomposition are windows clipped to free space (from a plan vertex to a wall, through free
 // space only).
