@@ -1,15 +1,25 @@
 #include "widgets/sampling_panel.h"
 
 #include <QComboBox>
+#include <QCoreApplication>
+#include <QElapsedTimer>
 #include <QFormLayout>
 #include <QLabel>
-#include <QMessageBox>
 #include <QSlider>
+#include <QThread>
+#include <QTimer>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <atomic>
 #include <cmath>
 #include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
 
+#include "model/error.h"
+#include "processing/sampling/keyframe_sampler.h"
+#include "processing/sampling/sampling_session.h"
 #include "processing/uniform_sampling.h"
 #include "widgets/document_commands.h"
 #include "widgets/project_document.h"
@@ -20,7 +30,31 @@ namespace {
 constexpr double kMinRatio = 2.0;
 constexpr double kMaxRatio = 500.0;
 constexpr int kSliderSteps = 200;
+struct Cancelled {};
 }  // namespace
+
+// One request for the worker: a snapshot of the project and what to do with it.
+struct SamplingPanel::Job {
+  Project snapshot;
+  SamplingRequest request;
+  int merge_session = 0;
+  SamplingOutcome outcome;  // filled by the worker
+};
+
+// The worker thread and what it shares with the GUI. One run at a time; the newest request waits in
+// `pending` (replacing an older one) and the running one is asked to stop.
+struct SamplingPanel::Worker {
+  SamplingSession session;  // touched only by the running thread
+  std::thread thread;
+  std::atomic<bool> cancel{false};
+  std::atomic<int> permille{0};
+  std::mutex stage_mutex;
+  std::string stage;
+  bool running = false;
+  std::optional<Job> pending;
+  // The loss last measured, and for which keyframes.
+  std::optional<SamplingOutcome> measured;
+};
 
 double SamplingPanel::ratio_of_slider(int value) {
   return kMinRatio * std::pow(kMaxRatio / kMinRatio, value / static_cast<double>(kSliderSteps));
@@ -41,17 +75,26 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
       budget_label_(new QLabel(this)),
       exponent_label_(new QLabel(this)),
       boost_label_(new QLabel(this)),
-      statistics_(new QLabel(this)) {
+      statistics_(new QLabel(this)),
+      progress_timer_(new QTimer(this)),
+      worker_(std::make_unique<Worker>()) {
+  // Item data: the method, and for visibility the rule after a colon.
   method_->addItem(tr("Uniform by arc length"), "uniform");
-  method_->setToolTip(tr("How keyframes are chosen along the path"));
+  method_->addItem(tr("Visibility: least expected loss"), "visibility");
+  method_->addItem(tr("Visibility: cells, l^k / v (seed)"), "visibility:cells");
+  method_->addItem(tr("Depth: volume changes"), "depth");
+  method_->setToolTip(tr("How keyframes are chosen along the path. Visibility needs the visibility cells "
+                         "(Process > Compute visibility); depth needs the capture's depth maps."));
   budget_->setRange(0, kSliderSteps);
   budget_->setToolTip(tr("Budget: frames per keyframe (reduction ratio)"));
-  exponent_->setRange(10, 50);  // 1.0 .. 5.0
-  exponent_->setToolTip(tr("Exponent of the cell length in l^k / v (visibility sampling)"));
+  exponent_->setRange(0, 50);  // 0.0 .. 5.0
+  exponent_->setToolTip(tr("Exponent of the cell length in l^k / v (cell and depth sampling)"));
   boost_->setRange(0, 50);  // 0.0 .. 5.0
-  boost_->setToolTip(tr("Extra samples where the envelope changes much between cells"));
+  boost_->setToolTip(tr("Extra samples where the cell size changes much between neighbouring cells"));
   statistics_->setWordWrap(true);
   statistics_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  progress_timer_->setInterval(150);
+  connect(progress_timer_, &QTimer::timeout, this, [this] { update_statistics(); });
 
   auto* form = new QFormLayout;
   form->addRow(tr("Method"), method_);
@@ -79,18 +122,40 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
   }
   connect(method_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] { on_control_changed(nullptr); });
   connect(&document_, &ProjectDocument::changed, this, [this](unsigned flags) {
-    if (flags & (kKeyframesChanged | kPathChanged | kVisibilityChanged)) {
+    if (flags & (kKeyframesChanged | kPathChanged | kVisibilityChanged | kPlanChanged | kCaptureChanged)) {
+      if (flags & (kVisibilityChanged | kCaptureChanged)) message_.clear();
       show_parameters(document_.project().keyframes.parameters);
+      request_loss();
       update_statistics();
     }
   });
   show_parameters(document_.project().keyframes.parameters);
+  request_loss();
   update_statistics();
+}
+
+SamplingPanel::~SamplingPanel() {
+  worker_->cancel = true;
+  worker_->pending.reset();
+  if (worker_->thread.joinable()) worker_->thread.join();
+}
+
+QString SamplingPanel::statistics_text() const { return statistics_->text(); }
+
+bool SamplingPanel::busy() const { return worker_->running; }
+
+void SamplingPanel::wait() {
+  QElapsedTimer timer;
+  timer.start();
+  while (busy() && timer.elapsed() < 600000) {
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    QThread::msleep(2);
+  }
 }
 
 SamplingParameters SamplingPanel::parameters() const {
   SamplingParameters p = document_.project().keyframes.parameters;
-  p.method = method_->currentData().toString().toStdString();
+  p.method = method_->currentData().toString().section(':', 0, 0).toStdString();
   p.count = 0;
   p.ratio = ratio_of_slider(budget_->value());
   p.exponent = exponent_->value() / 10.0;
@@ -100,8 +165,12 @@ SamplingParameters SamplingPanel::parameters() const {
 
 void SamplingPanel::show_parameters(const SamplingParameters& p) {
   showing_ = true;
-  const int method = method_->findData(QString::fromStdString(p.method));
-  method_->setCurrentIndex(method >= 0 ? method : 0);
+  // The document stores "visibility" without the rule: keep the rule the author picked here.
+  const QString current = method_->currentData().toString();
+  if (!(p.method == "visibility" && current.startsWith("visibility"))) {
+    const int method = method_->findData(QString::fromStdString(p.method));
+    method_->setCurrentIndex(method >= 0 ? method : 0);
+  }
   budget_->setValue(slider_of_ratio(p.ratio));
   exponent_->setValue(static_cast<int>(std::lround(p.exponent * 10)));
   boost_->setValue(static_cast<int>(std::lround(p.transition_boost * 10)));
@@ -109,16 +178,20 @@ void SamplingPanel::show_parameters(const SamplingParameters& p) {
   budget_label_->setText(tr("1 per %1").arg(ratio_of_slider(budget_->value()), 0, 'f', 0));
   exponent_label_->setText(QString::number(exponent_->value() / 10.0, 'f', 1));
   boost_label_->setText(QString::number(boost_->value() / 10.0, 'f', 1));
-  // Exponent and boost shape visibility sampling only.
-  const bool uniform = method_->currentData().toString() == "uniform";
-  exponent_->setEnabled(!uniform);
-  boost_->setEnabled(!uniform);
+  // Exponent and boost shape the cell rule only (visibility cells and depth).
+  const QString data = method_->currentData().toString();
+  const bool cells = data == "visibility:cells" || data == "depth";
+  exponent_->setEnabled(cells);
+  boost_->setEnabled(cells);
 }
 
 void SamplingPanel::on_control_changed(QSlider* slider) {
   budget_label_->setText(tr("1 per %1").arg(ratio_of_slider(budget_->value()), 0, 'f', 0));
   exponent_label_->setText(QString::number(exponent_->value() / 10.0, 'f', 1));
   boost_label_->setText(QString::number(boost_->value() / 10.0, 'f', 1));
+  const QString data = method_->currentData().toString();
+  exponent_->setEnabled(data == "visibility:cells" || data == "depth");
+  boost_->setEnabled(exponent_->isEnabled());
   if (showing_) return;
   resample(slider && slider->isSliderDown() ? drag_session_ : 0);
 }
@@ -126,16 +199,147 @@ void SamplingPanel::on_control_changed(QSlider* slider) {
 void SamplingPanel::resample(int merge_session) {
   const Project& p = document_.project();
   if (p.path.empty()) return;
-  Keyframes keyframes;
-  try {
-    keyframes = sample_uniform_by_arc_length(p.path, parameters(), p.keyframes.pinned);
-    keyframes.parameters = parameters();
-  } catch (const std::exception& e) {
-    statistics_->setText(tr("Cannot sample: %1").arg(QString::fromStdString(e.what())));
+  const SamplingParameters parameters = this->parameters();
+  message_.clear();
+  if (parameters.method == "uniform") {
+    // Fast (no geometry): at once, so a slider drag follows the hand; the loss follows on the worker.
+    Keyframes keyframes;
+    try {
+      SamplingInputs inputs;
+      inputs.path = &p.path;
+      keyframes = sample_keyframes(inputs, parameters, p.keyframes.pinned);
+    } catch (const std::exception& e) {
+      message_ = tr("Cannot sample: %1").arg(QString::fromStdString(e.what()));
+      update_statistics();
+      return;
+    }
+    worker_->pending.reset();  // a waiting visibility/depth run would overwrite this newer choice
+    if (!(keyframes == p.keyframes))
+      document_.undo_stack()->push(new SetKeyframesCommand(document_, std::move(keyframes), merge_session));
     return;
   }
-  if (keyframes == p.keyframes) return;
-  document_.undo_stack()->push(new SetKeyframesCommand(document_, std::move(keyframes), merge_session));
+  if (parameters.method == "visibility" && p.visibility.empty()) {
+    message_ = tr("Visibility sampling needs the visibility cells: run Process > Compute visibility first.");
+    update_statistics();
+    return;
+  }
+  if (parameters.method == "depth" && (p.capture.empty() || p.capture.depth_folder.empty())) {
+    message_ = tr("Depth sampling needs the capture's depth maps: import the capture with its depth folder.");
+    update_statistics();
+    return;
+  }
+  Job job;
+  job.snapshot = p;
+  job.request.parameters = parameters;
+  job.request.rule = method_->currentData().toString() == "visibility:cells" ? VisibilityRule::cell_rule
+                                                                             : VisibilityRule::expected_loss;
+  job.request.pinned = p.keyframes.pinned;
+  job.merge_session = merge_session;
+  start(std::move(job));
+}
+
+// Measure the loss of the document's keyframes unless it is known (or a resample will measure it).
+void SamplingPanel::request_loss() {
+  const Project& p = document_.project();
+  if (p.path.empty() || p.keyframes.empty() || p.plan.occluder_segments().empty()) return;
+  if (worker_->measured && worker_->measured->keyframes == p.keyframes) return;
+  if (worker_->running || worker_->pending) {
+    if (!worker_->pending || !worker_->pending->request.sample) {
+      // Replace a waiting loss request by this one; a waiting resample measures its own result.
+      Job job;
+      job.snapshot = p;
+      job.request.sample = false;
+      job.request.keyframes = p.keyframes;
+      worker_->pending = std::move(job);
+    }
+    return;
+  }
+  Job job;
+  job.snapshot = p;
+  job.request.sample = false;
+  job.request.keyframes = p.keyframes;
+  start(std::move(job));
+}
+
+void SamplingPanel::start(Job job) {
+  if (worker_->running) {
+    // The running job is stale: stop it; this one runs when it returns.
+    if (job.request.sample) worker_->cancel = true;
+    worker_->pending = std::move(job);
+    return;
+  }
+  launch(std::move(job));
+}
+
+void SamplingPanel::launch(Job job_in) {
+  Worker* w = worker_.get();
+  if (w->thread.joinable()) w->thread.join();  // the previous run has posted its result already
+  w->running = true;
+  w->cancel = false;
+  w->permille = 0;
+  auto job = std::make_shared<Job>(std::move(job_in));
+  progress_timer_->start();
+  update_statistics();
+  w->thread = std::thread([this, w, job] {
+    bool ok = false, cancelled = false;
+    QString error;
+    try {
+      job->outcome = w->session.run(job->snapshot, job->request, [w](double f, const std::string& stage) {
+        if (w->cancel) throw Cancelled{};
+        w->permille = static_cast<int>(f * 1000);
+        std::lock_guard<std::mutex> lock(w->stage_mutex);
+        w->stage = stage;
+      });
+      ok = true;
+    } catch (const Cancelled&) {
+      cancelled = true;
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    } catch (...) {
+      error = tr("unexpected error");
+    }
+    // Back on the GUI thread (dropped if the panel is gone: the destructor joins this thread first).
+    QMetaObject::invokeMethod(this, [this, job, ok, cancelled, error] { on_done(job, ok, cancelled, error); },
+                              Qt::QueuedConnection);
+  });
+}
+
+void SamplingPanel::on_done(std::shared_ptr<Job> job, bool ok, bool cancelled, const QString& error) {
+  Worker* w = worker_.get();
+  w->running = false;
+  if (w->thread.joinable()) w->thread.join();
+  progress_timer_->stop();
+  if (w->pending) {
+    Job next = std::move(*w->pending);
+    w->pending.reset();
+    launch(std::move(next));
+    emit worker_finished();
+    return;
+  }
+  const Project& p = document_.project();
+  if (!ok) {
+    if (!cancelled) message_ = tr("Cannot sample: %1").arg(error);
+    update_statistics();
+    emit worker_finished();
+    return;
+  }
+  if (job->request.sample) {
+    // The project may have changed under the worker: a result for another path is resampled.
+    if (!(job->snapshot.path == p.path) || !(job->snapshot.visibility == p.visibility) ||
+        !(job->snapshot.plan == p.plan)) {
+      resample(job->merge_session);
+      emit worker_finished();
+      return;
+    }
+    w->measured = job->outcome;
+    if (!(job->outcome.keyframes == p.keyframes))
+      document_.undo_stack()->push(new SetKeyframesCommand(document_, job->outcome.keyframes, job->merge_session));
+  } else {
+    w->measured = job->outcome;
+    request_loss();  // the keyframes moved on meanwhile
+  }
+  update_statistics();
+  emit worker_finished();
 }
 
 void SamplingPanel::update_statistics() {
@@ -145,14 +349,28 @@ void SamplingPanel::update_statistics() {
     return;
   }
   const SamplingStatistics s = sampling_statistics(p.path, p.keyframes);
-  statistics_->setText(tr("<b>kept %1 of %2 frames</b><br>ratio %3 : 1<br>spacing mean %4 m, max %5 m"
-                          "<br>%6 visibility cells")
-                           .arg(s.kept)
-                           .arg(s.total)
-                           .arg(s.ratio, 0, 'f', 1)
-                           .arg(s.mean_gap_m, 0, 'f', 2)
-                           .arg(s.max_gap_m, 0, 'f', 2)
-                           .arg(p.visibility.cells.size()));
+  QString text;
+  if (!message_.isEmpty()) text += "<b>" + message_.toHtmlEscaped() + "</b><br>";
+  text += tr("<b>kept %1 of %2 frames</b><br>ratio %3 : 1<br>spacing mean %4 m, max gap %5 m")
+              .arg(s.kept)
+              .arg(s.total)
+              .arg(s.ratio, 0, 'f', 1)
+              .arg(s.mean_gap_m, 0, 'f', 2)
+              .arg(s.max_gap_m, 0, 'f', 2);
+  const Worker& w = *worker_;
+  if (w.measured && w.measured->keyframes == p.keyframes && w.measured->loss.has_geometric)
+    text += tr("<br>geometric loss mean %1, p95 %2").arg(w.measured->loss.geometric.mean, 0, 'f', 3)
+                .arg(w.measured->loss.geometric.p95, 0, 'f', 3);
+  text += tr("<br>%1 visibility cells").arg(p.visibility.cells.size());
+  if (w.running) {
+    std::string stage;
+    {
+      std::lock_guard<std::mutex> lock(worker_->stage_mutex);
+      stage = worker_->stage;
+    }
+    text += tr("<br><i>working: %1 %2 %</i>").arg(QString::fromStdString(stage)).arg(w.permille / 10);
+  }
+  statistics_->setText(text);
 }
 
 }  // namespace plenopath::widgets

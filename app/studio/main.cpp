@@ -116,7 +116,10 @@ int main(int argc, char** argv) {
     window.tasks().start(QObject::tr("Compute visibility"), plenopath::studio::compute_visibility_task());
     window.tasks().wait();
   }
-  if (opened && parser.isSet(resample) && document.project().keyframes.empty()) window.sampling_panel()->resample(0);
+  if (opened && parser.isSet(resample) && document.project().keyframes.empty()) {
+    window.sampling_panel()->resample(0);
+    window.sampling_panel()->wait();  // visibility and depth sampling finish on a worker
+  }
   if (parser.isSet(frame)) {
     const QString f = parser.value(frame);
     document.set_current_position(f == "middle" ? document.frame_count() / 2 : f.toInt());

@@ -3,6 +3,7 @@
 // autosave recovery after kill -9, and the command line.
 #include <QAbstractSlider>
 #include <QAction>
+#include <QComboBox>
 #include <QApplication>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -313,6 +314,8 @@ TEST(Studio, SamplingSliderChangesKeyframesAndUndoRestores) {
   widgets::ProjectDocument& doc = s.window.document();
   widgets::SamplingPanel* panel = s.window.sampling_panel();
   QUndoStack* stack = doc.undo_stack();
+  // Uniform sampling (at once; visibility sampling is tested in sampling_panel_test.cpp).
+  panel->method_box()->setCurrentIndex(panel->method_box()->findData("uniform"));
   const Keyframes before = doc.project().keyframes;
   const int steps_before = stack->count();
 
@@ -508,7 +511,9 @@ TEST(AutosaveChild, DISABLED_EditThenWaitToBeKilled) {
   ASSERT_TRUE(s.window.open_project(file));
   s.window.autosave().set_interval(200);
   s.window.document().undo_stack()->push(new widgets::SetTourTitleCommand(s.window.document(), kRecoveredTitle));
-  s.window.sampling_panel()->budget_slider()->setValue(widgets::SamplingPanel::slider_of_ratio(10.0));
+  widgets::SamplingPanel* panel = s.window.sampling_panel();
+  panel->method_box()->setCurrentIndex(panel->method_box()->findData("uniform"));  // at once, no cells needed
+  panel->budget_slider()->setValue(widgets::SamplingPanel::slider_of_ratio(10.0));
   ASSERT_TRUE(wait_until([&] { return QFile::exists(studio::Autosave::side_file(file)); }, 20000));
   std::printf("AUTOSAVED\n");
   std::fflush(stdout);

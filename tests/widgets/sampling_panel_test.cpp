@@ -1,0 +1,102 @@
+// The sampling panel's visibility and depth methods: a clear message until visibility is computed; then
+// switching to visibility resamples (on the worker), meets the budget, shows the loss, is one undo step,
+// and a slider drag stays one undo step.
+#include <QComboBox>
+#include <QSlider>
+#include <QUndoStack>
+#include <gtest/gtest.h>
+
+#include "app/studio/studio_tasks.h"
+#include "processing/uniform_sampling.h"
+#include "processing/visibility.h"
+#include "tests/widgets/test_project.h"
+#include "tests/widgets/wait_until.h"
+#include "widgets/project_document.h"
+#include "widgets/sampling_panel.h"
+
+namespace plenopath {
+namespace {
+
+using widgets::SamplingPanel;
+
+int expected_budget(const SamplingPanel& panel, int frames) {
+  SamplingParameters p;
+  p.ratio = SamplingPanel::ratio_of_slider(panel.budget_slider()->value());
+  return keyframe_budget(p, frames);
+}
+
+void select(SamplingPanel& panel, const char* data) {
+  panel.method_box()->setCurrentIndex(panel.method_box()->findData(data));
+}
+
+TEST(SamplingPanel, VisibilityNeedsTheCellsFirst) {
+  Project project = test::test_project().project;
+  project.visibility = {};
+  widgets::ProjectDocument document;
+  document.reset(project, QString());
+  SamplingPanel panel(document);
+  select(panel, "uniform");
+  const int steps = document.undo_stack()->count();
+  select(panel, "visibility");
+  panel.wait();
+  EXPECT_TRUE(panel.statistics_text().contains("Compute visibility")) << panel.statistics_text().toStdString();
+  EXPECT_EQ(document.undo_stack()->count(), steps);
+  select(panel, "depth");  // the test capture has no depth maps
+  EXPECT_TRUE(panel.statistics_text().contains("depth")) << panel.statistics_text().toStdString();
+  EXPECT_EQ(document.undo_stack()->count(), steps);
+}
+
+TEST(SamplingPanel, SwitchingToVisibilityResamplesWithinTheBudgetAndUndoes) {
+  Project project = test::test_project().project;
+  project.visibility = VisibilityIndex(project.plan).cells_along_path(project.path);
+  ASSERT_FALSE(project.visibility.empty());
+  widgets::ProjectDocument document;
+  document.reset(project, QString());
+  SamplingPanel panel(document);
+  QUndoStack* stack = document.undo_stack();
+
+  select(panel, "uniform");
+  panel.budget_slider()->setValue(SamplingPanel::slider_of_ratio(4.0));
+  const Keyframes uniform = document.project().keyframes;
+  ASSERT_EQ(static_cast<int>(uniform.indices.size()), expected_budget(panel, 30));
+  const int steps = stack->count();
+
+  select(panel, "visibility");
+  ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
+  const Keyframes visibility = document.project().keyframes;
+  EXPECT_EQ(visibility.parameters.method, "visibility");
+  EXPECT_EQ(static_cast<int>(visibility.indices.size()), expected_budget(panel, 30));
+  EXPECT_EQ(visibility.indices.front(), 0);
+  EXPECT_EQ(visibility.indices.back(), 29);
+  EXPECT_EQ(visibility.rank.size(), visibility.indices.size());
+  EXPECT_EQ(stack->count(), steps + 1);
+  // The statistics show the loss of these keyframes (measured on the worker).
+  ASSERT_TRUE(test::wait_until([&] { return panel.statistics_text().contains("geometric loss"); }, 60000))
+      << panel.statistics_text().toStdString();
+  EXPECT_TRUE(panel.statistics_text().contains("max gap"));
+
+  stack->undo();
+  EXPECT_EQ(document.project().keyframes, uniform);
+  stack->redo();
+  EXPECT_EQ(document.project().keyframes, visibility);
+
+  // The seed's cell rule, then a drag of the budget: one more undo step each, budgets met.
+  select(panel, "visibility:cells");
+  ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
+  EXPECT_EQ(static_cast<int>(document.project().keyframes.indices.size()), expected_budget(panel, 30));
+  EXPECT_TRUE(panel.exponent_slider()->isEnabled());
+  const int before_drag = stack->count();
+  QSlider* slider = panel.budget_slider();
+  slider->setSliderDown(true);
+  for (double r : {6.0, 8.0, 10.0}) {
+    slider->setValue(SamplingPanel::slider_of_ratio(r));
+    QCoreApplication::processEvents();
+  }
+  slider->setSliderDown(false);
+  ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
+  EXPECT_EQ(stack->count(), before_drag + 1);
+  EXPECT_EQ(static_cast<int>(document.project().keyframes.indices.size()), expected_budget(panel, 30));
+}
+
+}  // namespace
+}  // namespace plenopath
