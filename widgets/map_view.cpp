@@ -587,6 +587,7 @@ bool MapView::handle_anchor_event(QEvent* e) {
     drag_.active = true;
     drag_.frame = frame;
     drag_.press_pixel = m->pos();
+    setFocus(Qt::MouseFocusReason);  // so Esc reaches the drag
     const PathFrame* f = document_.project().path.find_frame(frame);
     if (f) document_.set_current_position(document_.position_of_frame_index(frame));
     emit message(tr("Anchoring frame %1: release where it really was (Shift snaps, Esc cancels)").arg(frame));
