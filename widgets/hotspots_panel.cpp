@@ -117,6 +117,16 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   form->addRow(tr("Distance"), distance_);
   form->addRow(tr("Action"), action_);
   form->addRow(tr("Target"), target_row);
+  auto* new_movie = new QPushButton(tr("New movie texture"), this);
+  auto* new_event = new QPushButton(tr("New event"), this);
+  new_movie->setToolTip(tr("Then click four corners in the panorama (Ctrl+Shift+M)"));
+  new_event->setToolTip(tr("Then click four corners, or Shift+click a polygon and press Enter (Ctrl+Shift+H)"));
+  connect(new_movie, &QPushButton::clicked, this, [this] { editor_.set_mode(HotspotEditor::Mode::kNewMovieTexture); });
+  connect(new_event, &QPushButton::clicked, this, [this] { editor_.set_mode(HotspotEditor::Mode::kNewEvent); });
+  auto* new_row = new QHBoxLayout;
+  new_row->addWidget(new_movie);
+  new_row->addWidget(new_event);
+  new_row->addStretch(1);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(goto_);
   buttons->addWidget(delete_);
@@ -126,6 +136,7 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   auto* layout = new QVBoxLayout(content);
   layout->setContentsMargins(4, 4, 4, 4);
   list_->setMinimumHeight(60);
+  layout->addLayout(new_row);
   layout->addWidget(list_, 1);
   layout->addWidget(summary_);
   layout->addLayout(buttons);
