@@ -54,6 +54,9 @@ HotspotKind hotspot_kind_from_string(const std::string& text) {
   if (text == "event") return HotspotKind::kEvent;
   throw Error("unknown hotspot kind '" + text + "' (expected movie_texture or event)");
 }
+bool hotspot_action_uses_media(const std::string& action) {
+  return action == "swap_image" || action == "play_video" || action == "play_sound";
+}
 bool operator==(const Hotspot& l, const Hotspot& r) {
   return std::tie(l.id, l.kind, l.title, l.media, l.frame, l.image_corners, l.world_corners, l.trigger,
                   l.trigger_distance_m, l.action, l.action_target) ==

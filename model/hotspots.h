@@ -23,8 +23,10 @@ struct Hotspot {
   std::string trigger = "click";  // click | proximity
   double trigger_distance_m = 0.0;
   std::string action;             // swap_image | play_video | play_sound | jump | open_url | show_text
-  std::string action_target;      // media file, frame index, URL or text, per action
+  std::string action_target;      // media file (absolute in memory, like media), frame index, URL or text
 };
+// True for the actions whose target is a media file (swap_image, play_video, play_sound).
+bool hotspot_action_uses_media(const std::string& action);
 bool operator==(const Hotspot& l, const Hotspot& r);
 
 }  // namespace plenopath

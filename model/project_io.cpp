@@ -207,6 +207,7 @@ json hotspots_to_json(const std::vector<Hotspot>& hotspots, const std::string& b
   for (const auto& h : hotspots) {
     json j = hotspot_to_json(h);
     j["media"] = path_relative_to(h.media, base);
+    if (hotspot_action_uses_media(h.action)) j["action_target"] = path_relative_to(h.action_target, base);
     out.push_back(std::move(j));
   }
   return out;
@@ -217,6 +218,7 @@ std::vector<Hotspot> hotspots_from_json(const JsonReader& r, const std::string& 
   for (std::size_t i = 0; i < r.size(); ++i) {
     Hotspot h = hotspot_from_json(r.at(i));
     h.media = path_resolved_against(h.media, base);
+    if (hotspot_action_uses_media(h.action)) h.action_target = path_resolved_against(h.action_target, base);
     out.push_back(std::move(h));
   }
   return out;

@@ -128,10 +128,6 @@ std::string asset_script(const std::string& name, const std::string& mime, const
   return "plenopathAsset(\"" + name + "\",\"data:" + mime + ";base64," + base64(bytes) + "\");\n";
 }
 
-bool action_uses_media(const std::string& action) {
-  return action == "swap_image" || action == "play_video" || action == "play_sound";
-}
-
 std::string frame_stem(int frame) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "k%06d", frame);
@@ -287,7 +283,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
       return name;
     };
     m.media = copy_media(h.media, "");
-    if (action_uses_media(h.action)) m.action_media = copy_media(h.action_target, "_action");
+    if (hotspot_action_uses_media(h.action)) m.action_media = copy_media(h.action_target, "_action");
     media.push_back(m);
   }
 

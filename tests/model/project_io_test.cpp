@@ -85,7 +85,7 @@ Project make_full_project(const fs::path& dir) {
   h.trigger = "proximity";
   h.trigger_distance_m = 1.5;
   h.action = "swap_image";
-  h.action_target = "media/open.png";
+  h.action_target = (dir / "media" / "open.png").string();
   p.hotspots = {h};
   p.geo = {true, 48.8566, 2.3522, 35.0, 0.3, 1.01, {5.0, 5.0}};
   p.tour.title = "Office tour";
@@ -152,6 +152,7 @@ TEST_F(ProjectIoTest, MediaPathsAreStoredRelativeAndResolvedOnLoad) {
   EXPECT_EQ(j["plan"]["source_file"], "plans/office.dxf");
   EXPECT_EQ(j["capture"]["source"], "capture/frames");
   EXPECT_EQ(j["hotspots"][0]["media"], "media/lift.mp4");
+  EXPECT_EQ(j["hotspots"][0]["action_target"], "media/open.png");  // a swap_image target is media too
   EXPECT_EQ(j["format"], "plenopath-project");
   EXPECT_EQ(j["version"], kProjectFormatVersion);
 
@@ -161,6 +162,7 @@ TEST_F(ProjectIoTest, MediaPathsAreStoredRelativeAndResolvedOnLoad) {
   fs::rename(dir_, moved);
   const Project loaded = load_project((moved / "tour.plenopath").string());
   EXPECT_EQ(loaded.plan.source_file, (moved / "plans" / "office.dxf").string());
+  EXPECT_EQ(loaded.hotspots.at(0).action_target, (moved / "media" / "open.png").string());
   fs::rename(moved, dir_);
 }
 
