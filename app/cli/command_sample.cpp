@@ -202,6 +202,7 @@ int run(const Options& o, CLI::App* sub) {
 Command add_sample_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
   o->parameters.method = "";
+  o->parameters.exponent = CellRuleOptions{}.exponent;  // measured best in the plan (cell_rule.h), not the seed's 3
   CLI::App* sub = parent.add_subcommand("sample", "Keyframes along the path (uniform, visibility or depth) and what they lose");
   auto* plan = sub->add_option("--plan", o->plan, "Floor plan (*.dxf, ASCII)");
   sub->add_option("--layers", o->import.layers, "Import only these layers (default: all)");
@@ -221,7 +222,7 @@ Command add_sample_command(CLI::App& parent) {
   auto* ratio = sub->add_option("--ratio", o->parameters.ratio, "Budget: frames per keyframe (reduction ratio)")
                     ->check(CLI::PositiveNumber);
   count->excludes(ratio);
-  sub->add_option("--exponent", o->parameters.exponent, "Exponent e of the cell rule l^e / v (default 3)")
+  sub->add_option("--exponent", o->parameters.exponent, "Exponent e of the cell rule l^e / v (default 1; the seed's is 3)")
       ->check(CLI::Range(0.0, 10.0));
   sub->add_option("--boost", o->parameters.transition_boost, "Transition boost of the cell rule (default 1)")
       ->check(CLI::NonNegativeNumber);

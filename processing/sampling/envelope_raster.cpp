@@ -66,6 +66,42 @@ EnvelopeRaster::EnvelopeRaster(const PathEnvelopes& envelopes, double cell_m, in
   }
 }
 
+namespace {
+
+// Cells set in both masks over rows [r0, r1) and words [w0, w1) of each row. Two builds of the same loop:
+// the default x86-64 target has no popcount instruction (a library call per word), so where the CPU has
+// one, a copy compiled for it runs instead (about 4x faster; the sampler spends its time here).
+long common_cells_generic(const std::uint64_t* a, const std::uint64_t* b, int r0, int r1, int w0, int w1,
+                          int words_per_row) {
+  long common = 0;
+  for (int r = r0; r < r1; ++r) {
+    const std::size_t row = static_cast<std::size_t>(r) * words_per_row;
+    for (int w = w0; w < w1; ++w) common += __builtin_popcountll(a[row + w] & b[row + w]);
+  }
+  return common;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("popcnt"))) long common_cells_popcnt(const std::uint64_t* a, const std::uint64_t* b, int r0,
+                                                            int r1, int w0, int w1, int words_per_row) {
+  long common = 0;
+  for (int r = r0; r < r1; ++r) {
+    const std::size_t row = static_cast<std::size_t>(r) * words_per_row;
+    for (int w = w0; w < w1; ++w) common += __builtin_popcountll(a[row + w] & b[row + w]);
+  }
+  return common;
+}
+const bool kHasPopcnt = __builtin_cpu_supports("popcnt");
+#else
+const bool kHasPopcnt = false;
+long common_cells_popcnt(const std::uint64_t* a, const std::uint64_t* b, int r0, int r1, int w0, int w1,
+                         int words_per_row) {
+  return common_cells_generic(a, b, r0, r1, w0, w1, words_per_row);
+}
+#endif
+
+}  // namespace
+
 double EnvelopeRaster::loss(int i, int j) const {
   const int ci = count_[i], cj = count_[j];
   if (ci < 0 && cj < 0) return 0.0;
@@ -73,16 +109,13 @@ double EnvelopeRaster::loss(int i, int j) const {
   if (i == j) return 0.0;
   const int r0 = std::max(row_begin_[i], row_begin_[j]);
   const int r1 = std::min(row_end_[i], row_end_[j]);
+  const int w0 = std::max(word_begin_[i], word_begin_[j]);
+  const int w1 = std::min(word_end_[i], word_end_[j]);
   const std::size_t per_frame = static_cast<std::size_t>(rows_) * words_per_row_;
   const std::uint64_t* a = bits_.data() + per_frame * i;
   const std::uint64_t* b = bits_.data() + per_frame * j;
-  const int w0 = std::max(word_begin_[i], word_begin_[j]);
-  const int w1 = std::min(word_end_[i], word_end_[j]);
-  long common = 0;
-  for (int r = r0; r < r1; ++r) {
-    const std::size_t row = static_cast<std::size_t>(r) * words_per_row_;
-    for (int w = w0; w < w1; ++w) common += __builtin_popcountll(a[row + w] & b[row + w]);
-  }
+  const long common = kHasPopcnt ? common_cells_popcnt(a, b, r0, r1, w0, w1, words_per_row_)
+                                 : common_cells_generic(a, b, r0, r1, w0, w1, words_per_row_);
   const long united = static_cast<long>(ci) + cj - common;
   return united > 0 ? 1.0 - static_cast<double>(common) / united : 0.0;
 }

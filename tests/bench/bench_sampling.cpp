@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   // Which exponent of the cell rule measures best: the office sample and random plans, 50x, boost 0 and 1.
-  const std::vector<double> exponents = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0};
+  const std::vector<double> exponents = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0};  // JSON keys "0.0" .. "3.0"
   auto sweep = [&](Scene& scene, nlohmann::json* into) {
     SamplingInputs in;
     in.path = &scene.path;
@@ -229,6 +229,28 @@ int main(int argc, char** argv) {
     exponent_sweep["random_" + std::to_string(r)] = j;
   }
   out["cell_rule_mean_loss_at_50x"] = exponent_sweep;
+  // Summary: each setting's loss relative to uniform, averaged over the random plans, and the best exponent
+  // on the sample and on the random plans.
+  nlohmann::json summary;
+  for (const std::string boost : {"boost_0", "boost_1"}) {
+    std::string best_office, best_random;
+    double best_office_value = 1e9, best_random_value = 1e9;
+    for (auto& [e, office_value] : exponent_sweep["office"][boost].items()) {
+      double relative = 0.0;
+      for (int r = 0; r < random_plans; ++r) {
+        const nlohmann::json& j = exponent_sweep["random_" + std::to_string(r)];
+        relative += j[boost][e].get<double>() / j["uniform"].get<double>() / random_plans;
+      }
+      summary[boost]["random_mean_over_uniform"][e] = relative;
+      const double office_relative = office_value.get<double>() / exponent_sweep["office"]["uniform"].get<double>();
+      summary[boost]["office_over_uniform"][e] = office_relative;
+      if (office_relative < best_office_value) best_office_value = office_relative, best_office = e;
+      if (relative < best_random_value) best_random_value = relative, best_random = e;
+    }
+    summary[boost]["best_exponent_office"] = best_office;
+    summary[boost]["best_exponent_random"] = best_random;
+  }
+  out["cell_rule_exponent_summary"] = summary;
   out["total_s"] = seconds_since(t0);
   std::cout << out.dump(1) << std::endl;
   return 0;

@@ -148,10 +148,12 @@ TEST(CellRule, FollowsTheRuleOnAPlan) {
   const Keyframes k = sample_keyframes(in, p);
   ASSERT_EQ(k.indices.size(), 60u);
   // Expected count per cell, by hand from its l and v: its share of the 59 steps between the ends.
+  // v is the cell's mean envelope area (its middle's when the mean was not measured).
+  auto v = [](const VisibilityCell& c) { return std::max(c.area_mean > 0.0 ? c.area_mean : c.area_mid, 0.01); };
   double total = 0.0;
-  for (const auto& c : cells.cells) total += c.length * c.length / std::max(c.area_mid, 0.01);
+  for (const auto& c : cells.cells) total += c.length * c.length / v(c);
   for (const auto& c : cells.cells) {
-    const double expected = 59.0 * c.length * c.length / std::max(c.area_mid, 0.01) / total;
+    const double expected = 59.0 * c.length * c.length / v(c) / total;
     const bool last = c.s_end >= path.length() - 1e-9;
     const int got = count_in(path, k, 0.5 + c.s_begin, last ? 1e9 : 0.5 + c.s_end);
     // Quantile placement: each cell gets its share rounded up or down (frames are 5 cm apart, so a
