@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QMouseEvent>
+#include <QSignalSpy>
 #include <QTableWidget>
 #include <QTest>
 #include <QToolButton>
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "app/studio/main_window.h"
+#include "app/studio/studio_tasks.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "rig/synthetic_camera.h"
@@ -394,6 +396,31 @@ TEST(Anchors, DragOnALongPathPrintsItsFrameTime) {
   std::printf("drag on a %zu-frame path: %.1f ms per move (preview + redraw; a redraw alone %.1f ms), release "
               "(refinement) %.0f ms\n", doc.project().path.size(), ms_per_move, ms_per_render, release_ms);
   EXPECT_EQ(doc.project().anchors.size(), 1u);
+}
+
+// Cancel reaches the solver: the refinement of the office walk (2 888 frames) cancelled right after it
+// starts leaves the document as it was, with no undo step.
+TEST(Anchors, CancelledRefinementChangesNothing) {
+  Project project;
+  project.plan = make_office_sample_plan();
+  project.path = auto_walk(project.plan);
+  const std::size_t n = project.path.size();
+  for (std::size_t i : {std::size_t{0}, n / 2, n - 1})
+    project.anchors.push_back({project.path.frames[i].index, project.path.frames[i].position() + Eigen::Vector2d(0.3, 0.2),
+                               std::nullopt});
+  widgets::ProjectDocument doc;
+  doc.reset(project, QString());
+  widgets::TaskRunner runner(doc);
+  QSignalSpy finished(&runner, &widgets::TaskRunner::finished);
+  QSignalSpy failed(&runner, &widgets::TaskRunner::failed);
+  ASSERT_TRUE(runner.start("Refine path with anchors", studio::refine_with_anchors_task()));
+  runner.cancel();
+  runner.wait();
+  ASSERT_EQ(finished.count(), 1);
+  EXPECT_FALSE(finished.at(0).at(0).toBool());
+  EXPECT_EQ(failed.count(), 0) << "cancelled, not failed";
+  EXPECT_EQ(doc.project().path, project.path);
+  EXPECT_EQ(doc.undo_stack()->count(), 0);
 }
 
 }  // namespace
