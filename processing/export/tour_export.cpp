@@ -17,6 +17,7 @@
 #include "processing/export/tour_json.h"
 #include "processing/export/zip_writer.h"
 #include "processing/frame_source.h"
+#include "processing/hotspots/hotspot_validation.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;
@@ -261,8 +262,10 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     images.push_back(files);
   }
 
-  // Hotspot media: copied under media/ with safe names; missing media is a warning, not a failure.
+  // Hotspot media: copied under media/ with safe names. Problems (missing or undecodable media, inconsistent
+  // quads, markup in text, unusable targets) are warnings, not failures: the author hears of each once.
   report_progress(0.86, "hotspot media");
+  for (const HotspotWarning& w : validate_hotspots(project)) report.warnings.push_back(w.message);
   std::vector<HotspotMediaFile> media;
   for (const Hotspot& h : project.hotspots) {
     HotspotMediaFile m;
@@ -270,10 +273,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     auto copy_media = [&](const std::string& source, const std::string& suffix) -> std::string {
       if (source.empty()) return "";
       std::error_code ec;
-      if (!fs::is_regular_file(source, ec)) {
-        report.warnings.push_back("hotspot '" + h.id + "': media file not found: " + source);
-        return "";
-      }
+      if (!fs::is_regular_file(source, ec)) return "";  // validate_hotspots has warned about it
       const std::string name = media_name(h.id, suffix, source);
       const std::string data = read_binary_file(source);
       if (options.offline_images)
