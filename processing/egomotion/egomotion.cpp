@@ -91,6 +91,7 @@ std::string EgomotionOptions::check() const {
   if (!(keyframe_parallax_deg > 0)) o << "keyframe_parallax_deg must be > 0; ";
   if (!(keyframe_max_turn_deg > 0)) o << "keyframe_max_turn_deg must be > 0; ";
   if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) o << "keyframe_min_shared must be in (0, 1); ";
+  if (!(max_step_ratio > 1)) o << "max_step_ratio must be > 1; ";
   if (!(max_step_turn_disagreement_deg > 0)) o << "max_step_turn_disagreement_deg must be > 0; ";
   if (!(min_triangulation_deg > 0)) o << "min_triangulation_deg must be > 0; ";
   if (!(max_initial_error_deg > 0)) o << "max_initial_error_deg must be > 0; ";
@@ -289,6 +290,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   std::vector<Eigen::Vector3d> point(tracks.size(), Eigen::Vector3d::Zero());
   std::vector<char> point_valid(tracks.size(), 0);
   std::vector<bool> kf_bridged(kfn, false);
+  std::vector<double> recent_lengths;  // the last measured keyframe steps
   double last_length = 1.0, last_direction = kf_pose[0].z();
   auto triangulate_track = [&](int t, int up_to_kf) {
     const auto& obs = tracks[t].observations;
@@ -348,6 +350,15 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       } else {
         length = std::max(0.0, median(lengths));
       }
+      // A step many times the recent ones is a bad measurement (points near the direction of travel), not
+      // a trolley that suddenly ran: bridge it.
+      if (recent_lengths.size() >= 3) {
+        const double typical = median(recent_lengths);
+        if (length > opt.max_step_ratio * typical) {
+          length = typical;
+          kf_bridged[k] = true;
+        }
+      }
     } else if (rel.median_parallax < two_view.min_parallax && !ba.empty()) {
       length = 0.0;  // a turn on the spot: no translation to see
     } else {
@@ -359,6 +370,10 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     if (length > 0) {
       last_length = length;
       last_direction = direction;
+      if (!kf_bridged[k]) {
+        recent_lengths.push_back(length);
+        if (recent_lengths.size() > 9) recent_lengths.erase(recent_lengths.begin());
+      }
     }
     for (int t : frame_tracks[b]) triangulate_track(t, k);
     if (k % 16 == 0 && !report("chaining", double(k) / kfn)) return finish_cancelled();
@@ -427,7 +442,17 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     } else if (static_cast<int>(pts.size()) >= opt.resection_min_points) {
       Eigen::Vector3d p = pose[f];
       const int inliers = resect_pose(&p, pts, brs, refinement.loss_scale, inlier_threshold);
-      if (inliers >= opt.resection_min_points) {
+      // The frame lies between its keyframes: a resection that lands farther from the interpolated pose
+      // than the keyframe step (or turns more than the tracked turn allows) has slipped.
+      const int k1 = static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
+      const int k0 = std::max(0, k1 - 1);
+      const double kf_step = k1 < kfn ? (refined_kf[k1].head<2>() - refined_kf[k0].head<2>()).norm()
+                                      : (k0 > 0 ? (refined_kf[k0].head<2>() - refined_kf[k0 - 1].head<2>()).norm() : 0.0);
+      const bool slipped = (p.head<2>() - pose[f].head<2>()).norm() > std::max(1e-9, kf_step) ||
+                           std::abs(p.z() - pose[f].z()) > opt.max_step_turn_disagreement_deg * deg;
+      if (slipped) {
+        add_flag(frames[f], kFrameBridged, "bridged: the frame's points place it away from its keyframes");
+      } else if (inliers >= opt.resection_min_points) {
         pose[f] = p;
       } else {
         add_flag(frames[f], kFrameBridged, "bridged: too few consistent points to place the frame");

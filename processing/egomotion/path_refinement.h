@@ -27,7 +27,7 @@ struct RefinementOptions {
   int window_keyframes = 80;       // keyframes per window in the windowed pass (0 = no windowed pass)
   int window_overlap = 20;         // keyframes shared by consecutive windows (held in the later one)
   int window_max_iterations = 15;
-  int global_max_iterations = 40;  // 0 = skip the global pass
+  int global_max_iterations = 20;  // 0 = skip the global pass (the windowed pass has done most of the work)
   // After the global pass, observations farther off than this (radians) are dropped and the global pass is
   // repeated (0 = keep all).
   double outlier_threshold = 0.012;

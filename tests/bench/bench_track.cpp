@@ -123,13 +123,23 @@ nlohmann::json run(const RunSpec& spec) {
   }
   const double rss_before_mb = peak_rss_mb();
   const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> stage_seconds;  // stage, when it started (from t0)
   const EgomotionResult r = EgomotionTracker::run(static_cast<int>(truth.size()), [&](int i) {
     const auto t = std::chrono::steady_clock::now();
     cv::Mat m = generated ? generated->read(i) : cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
     (generated ? render_s : decode_s) += seconds(t);
     return m;
-  }, options);
+  }, options, [&](const std::string& stage, double) {
+    if (stage_seconds.empty() || stage_seconds.back().first != stage) stage_seconds.emplace_back(stage, seconds(t0));
+    return true;
+  });
   const double total_s = seconds(t0);
+  // Seconds spent in each stage of finish() (the frames stage includes decoding; see seconds_frames_stage).
+  nlohmann::json geometry_stages;
+  for (size_t k = 0; k < stage_seconds.size(); ++k)
+    if (stage_seconds[k].first != "frames")
+      geometry_stages[stage_seconds[k].first] =
+          (k + 1 < stage_seconds.size() ? stage_seconds[k + 1].second : total_s) - stage_seconds[k].second;
   const double track_s = total_s - decode_s - (generated ? render_s : 0.0);
 
   const PathErrors e = evaluate_path(r.path, truth);
@@ -179,6 +189,7 @@ nlohmann::json run(const RunSpec& spec) {
           {"flagged_frames", r.flagged_frames},
           {"seconds_frames_stage", r.seconds_per_frame_stage},
           {"seconds_geometry", r.seconds_geometry},
+          {"seconds_geometry_stages", geometry_stages},
           {"seconds_decoding_excluded", track_s},
           {"seconds_decoding", decode_s},
           {"frames_per_second", truth.size() / track_s},
