@@ -114,6 +114,7 @@ int run(const Options& o, CLI::App* sub) {
     inputs.cells = &cells;
   }
   std::vector<DepthVolume> volumes;
+  PathEnvelopes depth_envelopes;
   if (o.parameters.method == "depth") {
     if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
     if (source->depth_match_count() == 0)
@@ -122,8 +123,9 @@ int run(const Options& o, CLI::App* sub) {
       check_frame(i);
       if (!source->has_depth(i)) throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
       return source->read_depth(i);
-    });
+    }, {}, {}, &depth_envelopes);
     inputs.depth_volumes = &volumes;
+    inputs.depth_envelopes = &depth_envelopes;
   }
   PathEnvelopes envelopes;
   if (index) {

@@ -5,7 +5,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model/error.h"
+#include "processing/sampling/envelope_raster.h"
 #include "processing/sampling/keyframe_placement.h"
+#include "processing/sampling/loss_refinement.h"
 
 namespace plenopath {
 
@@ -13,15 +15,51 @@ void DepthSamplingOptions::check() const {
   changes.check();
   cells.check();
   if (max_depth_width < 8) throw Error("depth sampling: max depth width must be >= 8");
+  if (refine_sweeps < 0) throw Error("depth sampling: refine sweeps must be >= 0");
+  if (!(raster_cell_m > 0.0)) throw Error("depth sampling: raster cell must be > 0 m");
+}
+
+Envelope envelope_from_depth(const cv::Mat& depth, const PathFrame& pose) {
+  if (depth.empty() || depth.type() != CV_32F) throw Error("envelope from depth: CV_32F depth in metres expected");
+  Envelope e;
+  const int w = depth.cols, h = depth.rows;
+  const int upper = std::max(0, h / 2 - 1), lower = std::min(h - 1, h / 2);
+  for (int u = 0; u < w; ++u) {
+    float d = 0.0f;
+    for (int v : {upper, lower}) {
+      const float r = depth.at<float>(v, u);
+      if (std::isfinite(r) && r > 0.0f && (d == 0.0f || r < d)) d = r;
+    }
+    if (d == 0.0f) continue;
+    const double azimuth = (u + 0.5) / w * 2.0 * M_PI - M_PI;
+    const double world = pose.heading - azimuth;
+    e.polygon.push_back(pose.position() + d * Eigen::Vector2d(std::cos(world), std::sin(world)));
+  }
+  if (e.polygon.size() < 3) {
+    e.polygon.clear();
+    return e;
+  }
+  std::reverse(e.polygon.begin(), e.polygon.end());  // columns run clockwise: counter-clockwise as envelopes are
+  double twice = 0.0;
+  for (std::size_t i = 0; i < e.polygon.size(); ++i) {
+    const auto& a = e.polygon[i];
+    const auto& b = e.polygon[(i + 1) % e.polygon.size()];
+    twice += a.x() * b.y() - a.y() * b.x();
+  }
+  e.area = 0.5 * std::abs(twice);
+  e.status = EnvelopeStatus::ok;
+  return e;
 }
 
 std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
                                                   const std::function<cv::Mat(int index)>& read_depth,
                                                   const DepthSamplingOptions& options,
-                                                  const std::function<void(double)>& progress) {
+                                                  const std::function<void(double)>& progress,
+                                                  PathEnvelopes* envelopes) {
   options.check();
   std::vector<DepthVolume> out;
   out.reserve(path.size());
+  if (envelopes) envelopes->frames.assign(path.size(), Envelope{});
   for (std::size_t i = 0; i < path.size(); ++i) {
     cv::Mat depth = read_depth(path.frames[i].index);
     if (depth.type() == CV_16U) depth.convertTo(depth, CV_32F, 0.001);  // millimetres -> metres, 0 stays 0
@@ -33,6 +71,7 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
       depth = small;
     }
     out.push_back(depth_volume(depth));
+    if (envelopes) envelopes->frames[i] = envelope_from_depth(depth, path.frames[i]);
     if (progress && (i % 16 == 0 || i + 1 == path.size())) progress(static_cast<double>(i + 1) / path.size());
   }
   return out;
@@ -72,7 +111,7 @@ std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path, cons
 
 Keyframes sample_by_depth(const CameraPath& path, const std::vector<DepthVolume>& volumes,
                           const SamplingParameters& parameters, const std::vector<int>& pinned,
-                          const DepthSamplingOptions& options_in) {
+                          const DepthSamplingOptions& options_in, const PathEnvelopes* eye_level) {
   DepthSamplingOptions options = options_in;
   options.cells.exponent = parameters.exponent;
   options.cells.transition_boost = parameters.transition_boost;
@@ -81,7 +120,13 @@ Keyframes sample_by_depth(const CameraPath& path, const std::vector<DepthVolume>
   const std::vector<SamplingCell> cells = sampling_cells_from_depth(path, volumes, options);
   Keyframes k = place_keyframes(path, cell_rule_density(cells, path.length(), options.cells), parameters, pinned);
   k.parameters.method = "depth";
-  return k;
+  if (!options.refine_by_loss || !eye_level || eye_level->frames.size() != path.size()) return k;
+  const EnvelopeRaster raster(*eye_level, options.raster_cell_m);
+  LossRefinementOptions refine;
+  refine.sweeps = options.refine_sweeps;
+  refine.min_spacing_m = parameters.min_spacing_m;
+  refine.max_spacing_m = parameters.max_spacing_m;
+  return refine_keyframes_by_loss(path, k, pinned, raster, refine);
 }
 
 }  // namespace plenopath

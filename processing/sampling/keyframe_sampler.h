@@ -21,6 +21,7 @@ struct SamplingInputs {
   const VisibilityIndex* index = nullptr;
   const VisibilityCells* cells = nullptr;
   const std::vector<DepthVolume>* depth_volumes = nullptr;
+  const PathEnvelopes* depth_envelopes = nullptr;  // depth: every frame's eye-level envelope (optional)
   const PathEnvelopes* envelopes = nullptr;  // visibility: every frame's envelope, if already computed
   const EnvelopeRaster* raster = nullptr;    // visibility: their raster, if already built
   std::function<void(double)> progress;      // optional; may throw to cancel

@@ -102,4 +102,30 @@ std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<doub
   return rank;
 }
 
+Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes, const std::vector<int>& pinned,
+                                   const EnvelopeRaster& raster, const LossRefinementOptions& options,
+                                   const std::function<void(double)>& progress) {
+  if (raster.frames() != static_cast<int>(path.size()))
+    throw Error("loss refinement: the envelope raster has " + std::to_string(raster.frames()) +
+                " frames, the path " + std::to_string(path.size()));
+  if (keyframes.indices.size() < 3) return keyframes;
+  const std::vector<double> s = path.arc_lengths();
+  std::vector<int> positions;
+  std::vector<bool> fixed;
+  for (int index : keyframes.indices) {
+    const PathFrame* frame = path.find_frame(index);
+    if (!frame) throw Error("loss refinement: keyframe " + std::to_string(index) + " is not on the path");
+    const int i = static_cast<int>(frame - path.frames.data());
+    positions.push_back(i);
+    fixed.push_back(i == 0 || i + 1 == static_cast<int>(path.size()) ||
+                    std::find(pinned.begin(), pinned.end(), index) != pinned.end());
+  }
+  positions = refine_by_loss(raster, s, positions, fixed, options, progress);
+  Keyframes out = keyframes;
+  out.indices.clear();
+  for (int i : positions) out.indices.push_back(path.frames[i].index);
+  out.rank = loss_ranks(raster, s, positions, fixed);
+  return out;
+}
+
 }  // namespace plenopath

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/camera_path.h"
+#include "model/keyframes.h"
 #include "processing/sampling/envelope_raster.h"
 
 namespace plenopath {
@@ -37,5 +38,11 @@ std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<
 // elimination by least added loss.
 std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<double>& arc_lengths,
                             const std::vector<int>& positions, const std::vector<bool>& fixed);
+
+// The whole step on a keyframe set: first, last and `pinned` stay; keyframes move (refine_by_loss with
+// `options`) and are re-ranked (loss_ranks). The budget and parameters are kept.
+Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes, const std::vector<int>& pinned,
+                                   const EnvelopeRaster& raster, const LossRefinementOptions& options = {},
+                                   const std::function<void(double)>& progress = {});
 
 }  // namespace plenopath

@@ -17,6 +17,7 @@ struct SamplingSession::Cache {
   Capture depth_capture;
   CameraPath depth_path;
   std::vector<DepthVolume> volumes;
+  PathEnvelopes depth_envelopes;
 };
 
 SamplingSession::SamplingSession() : cache_(std::make_unique<Cache>()) {}
@@ -68,7 +69,8 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
         if (index < 0 || index >= source->frame_count() || !source->has_depth(index))
           throw Error(project.capture.depth_folder + ": no depth map for frame " + std::to_string(index));
         return source->read_depth(index);
-      }, {}, [&](double f) { progress(0.5 * f, "depth volumes of " + std::to_string(path.size()) + " frames"); });
+      }, {}, [&](double f) { progress(0.5 * f, "depth volumes of " + std::to_string(path.size()) + " frames"); },
+      &c.depth_envelopes);
       c.depth_capture = project.capture;
       c.depth_path = path;
     }
@@ -81,6 +83,7 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
     inputs.index = c.index.get();
     inputs.cells = &project.visibility;
     inputs.depth_volumes = &c.volumes;
+    inputs.depth_envelopes = &c.depth_envelopes;
     inputs.envelopes = c.envelopes.get();
     inputs.raster = c.raster.get();
     inputs.visibility.rule = request.rule;

@@ -126,23 +126,11 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
     built = std::make_unique<EnvelopeRaster>(*envelopes, options.raster_cell_m);
     raster = built.get();
   }
-  const std::vector<double> s = path.arc_lengths();
-  std::vector<int> positions;
-  std::vector<bool> fixed;
-  for (int index_in_capture : k.indices) {
-    const int i = static_cast<int>(path.find_frame(index_in_capture) - path.frames.data());
-    positions.push_back(i);
-    fixed.push_back(i == 0 || i + 1 == static_cast<int>(path.size()) ||
-                    std::find(pinned.begin(), pinned.end(), index_in_capture) != pinned.end());
-  }
   LossRefinementOptions refine;
   refine.sweeps = options.refine_sweeps;
   refine.min_spacing_m = parameters.min_spacing_m;
   refine.max_spacing_m = parameters.max_spacing_m;
-  positions = refine_by_loss(*raster, s, positions, fixed, refine, report(0.6, 0.95));
-  k.indices.clear();
-  for (int i : positions) k.indices.push_back(path.frames[i].index);
-  k.rank = loss_ranks(*raster, s, positions, fixed);
+  k = refine_keyframes_by_loss(path, k, pinned, *raster, refine, report(0.6, 0.95));
   if (inputs.progress) inputs.progress(1.0);
   return k;
 }

@@ -3,7 +3,8 @@
 // ratio visibility_mean / uniform_mean at 50x (target <= 0.8). Also: the cell rule's loss for several
 // exponents on the sample and on random plans (which default exponent measures best), and timings.
 // Ground truth: rig/synthetic_camera.h make_office_sample_plan + auto_walk with a 4 cm step (dense enough
-// that 100x still keeps dozens of keyframes); depth volumes from the synthetic renderer at 128 x 64.
+// that 100x still keeps dozens of keyframes); depth maps from the synthetic renderer at 128 x 64 (the depth
+// sampler sees them only, never the plan).
 // Prints one JSON object.
 #include <algorithm>
 #include <chrono>
@@ -128,11 +129,13 @@ int main(int argc, char** argv) {
   render.width = 128;
   render.height = 64;
   std::vector<DepthVolume> volumes;
+  PathEnvelopes depth_envelopes;  // eye level, from the depth maps alone
   RenderedPanorama panorama;
   for (const PathFrame& f : office.path.frames) {
     if (quick) break;
     render_panorama(synthetic, f, render, panorama);
     volumes.push_back(depth_volume(panorama.depth));
+    depth_envelopes.frames.push_back(envelope_from_depth(panorama.depth, f));
   }
   out["ground_truth"]["depth_render_s"] = seconds_since(t_depth);
 
@@ -141,6 +144,7 @@ int main(int argc, char** argv) {
   inputs.index = office.index.get();
   inputs.cells = &office.cells;
   inputs.depth_volumes = &volumes;
+  inputs.depth_envelopes = &depth_envelopes;
   inputs.envelopes = &office.envelopes;
   if (quick && argc > 3) inputs.visibility.refine_sweeps = std::atoi(argv[2]), inputs.visibility.raster_cell_m = std::atof(argv[3]);
   const EnvelopeRaster raster(office.envelopes, inputs.visibility.raster_cell_m);
@@ -159,10 +163,11 @@ int main(int argc, char** argv) {
       {"visibility_density_only", "visibility", VisibilityRule::expected_loss, 3.0, 1.0},
       {"visibility_cell_rule_e3", "visibility", VisibilityRule::cell_rule, 3.0, 1.0},
       {"visibility_cell_rule_e3_no_boost", "visibility", VisibilityRule::cell_rule, 3.0, 0.0},
-      {"depth_e1", "depth", VisibilityRule::expected_loss, 1.0, 1.0},
-      {"depth", "depth", VisibilityRule::expected_loss, 3.0, 1.0},
+      {"depth", "depth", VisibilityRule::expected_loss, 1.0, 1.0},
+      {"depth_cell_rule_only", "depth", VisibilityRule::expected_loss, 1.0, 1.0},
+      {"depth_cell_rule_only_e3", "depth", VisibilityRule::expected_loss, 3.0, 1.0},
   };
-  if (quick) variants.resize(variants.size() - 2);  // no depth
+  if (quick) variants.resize(variants.size() - 3);  // no depth
   std::map<std::string, double> mean_at_50;
   for (double ratio : quick ? std::vector<double>{50.0} : std::vector<double>{10.0, 50.0, 100.0}) {
     nlohmann::json at_ratio;
@@ -174,6 +179,7 @@ int main(int argc, char** argv) {
       p.transition_boost = v.boost;
       inputs.visibility.rule = v.rule;
       inputs.visibility.refine_by_loss = v.name != "visibility_density_only";
+      inputs.depth.refine_by_loss = v.name.rfind("depth_cell_rule_only", 0) != 0;
       const auto t = Clock::now();
       const Keyframes k = sample_keyframes(inputs, p);
       const double sample_s = seconds_since(t);
@@ -201,6 +207,7 @@ int main(int argc, char** argv) {
     p.transition_boost = v.boost;
     inputs.visibility.rule = v.rule;
     inputs.visibility.refine_by_loss = v.name != "visibility_density_only";
+    inputs.depth.refine_by_loss = v.name.rfind("depth_cell_rule_only", 0) != 0;
     const Keyframes full = sample_keyframes(inputs, p);
     const std::vector<int> order = full.progressive_order();
     nlohmann::json j;

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "model/error.h"
+#include "processing/sampling/polygon_iou.h"
+#include "processing/visibility.h"
 #include "rig/synthetic_camera.h"
 #include "sampling_test_util.h"
 
@@ -90,6 +94,27 @@ TEST(DepthSampler, RenderedDepthFindsTheDoor) {
   p.method = "depth";
   p.count = 10;
   EXPECT_EQ(sample_by_depth(path, volumes, p, {}).indices.size(), 10u);
+}
+
+// The eye-level envelope read from a rendered depth map matches the plan's envelope (CGAL), whatever the
+// heading: the renderer and the visibility index are independent.
+TEST(DepthSampler, EnvelopeFromDepthMatchesThePlan) {
+  const FloorPlan plan = sampling_test::three_rooms();
+  const SyntheticScene scene = build_synthetic_scene(plan);
+  const VisibilityIndex index(plan);
+  RenderOptions render;
+  render.width = 512;
+  render.height = 256;
+  render.threads = 1;
+  for (const auto& [x, y, heading] : {std::tuple{3.0, 2.0, 0.0}, std::tuple{8.0, 1.0, 2.0}, std::tuple{13.0, 2.5, -1.2}}) {
+    const PathFrame pose{0, "", x, y, heading, 1.0, kFrameOk, ""};
+    const Envelope from_depth = envelope_from_depth(render_panorama(scene, pose, render).depth, pose);
+    const Envelope from_plan = index.envelope(pose.position());
+    ASSERT_EQ(from_depth.status, EnvelopeStatus::ok);
+    EXPECT_GT(polygon_iou(from_depth.polygon, from_plan.polygon), 0.97) << x << ", " << y << " heading " << heading;
+    EXPECT_NEAR(from_depth.area, from_plan.area, 0.04 * from_plan.area);
+  }
+  EXPECT_THROW(envelope_from_depth(cv::Mat(4, 8, CV_16U), PathFrame{}), Error);
 }
 
 }  // namespace
