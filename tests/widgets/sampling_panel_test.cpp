@@ -2,6 +2,8 @@
 // switching to visibility resamples (on the worker), meets the budget, shows the loss, is one undo step,
 // and a slider drag stays one undo step.
 #include <QComboBox>
+#include <QDir>
+#include <QTemporaryDir>
 #include <QSlider>
 #include <QUndoStack>
 #include <gtest/gtest.h>
@@ -9,6 +11,8 @@
 #include "app/studio/studio_tasks.h"
 #include "processing/uniform_sampling.h"
 #include "processing/visibility.h"
+#include "rig/synthetic_camera.h"
+#include <opencv2/imgcodecs.hpp>
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/project_document.h"
@@ -96,6 +100,37 @@ TEST(SamplingPanel, SwitchingToVisibilityResamplesWithinTheBudgetAndUndoes) {
   ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
   EXPECT_EQ(stack->count(), before_drag + 1);
   EXPECT_EQ(static_cast<int>(document.project().keyframes.indices.size()), expected_budget(panel, 30));
+}
+
+// Depth sampling once the capture has depth maps (rendered here as 16-bit PNG in millimetres).
+TEST(SamplingPanel, DepthSamplingWithDepthMaps) {
+  Project project = test::test_project().project;
+  QTemporaryDir dir;
+  ASSERT_TRUE(dir.isValid());
+  const SyntheticScene scene = build_synthetic_scene(project.plan);
+  RenderOptions render;  // the frames' size: depth maps must match them
+  render.width = project.capture.width;
+  render.height = project.capture.height;
+  for (const PathFrame& f : project.path.frames) {
+    cv::Mat depth_mm;
+    render_panorama(scene, f, render).depth.convertTo(depth_mm, CV_16U, 1000.0);
+    const std::string name = QString("%1.png").arg(f.index, 6, 10, QChar('0')).toStdString();
+    ASSERT_TRUE(cv::imwrite(QDir(dir.path()).filePath(QString::fromStdString(name)).toStdString(), depth_mm));
+  }
+  project.capture.depth_folder = dir.path().toStdString();
+  widgets::ProjectDocument document;
+  document.reset(project, QString());
+  SamplingPanel panel(document);
+  select(panel, "uniform");
+  const int steps = document.undo_stack()->count();
+  select(panel, "depth");
+  ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
+  const Keyframes k = document.project().keyframes;
+  EXPECT_EQ(k.parameters.method, "depth") << panel.statistics_text().toStdString();
+  EXPECT_EQ(static_cast<int>(k.indices.size()), expected_budget(panel, 30));
+  EXPECT_EQ(document.undo_stack()->count(), steps + 1);
+  document.undo_stack()->undo();
+  EXPECT_EQ(document.project().keyframes.parameters.method, "uniform");
 }
 
 }  // namespace
