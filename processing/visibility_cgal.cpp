@@ -179,6 +179,10 @@ void VisibilityIndex::Impl::build(const FloorPlan& plan) {
     walls = std::move(kept);
   }
   insert_segments(&arr, walls);
+  // Arr_segment_traits_2 computes a curve's supporting line on first use and caches it in mutable members:
+  // two worker threads locating points at once would both write it (a data race that corrupted the heap
+  // about one run in three). Fill every cache now, so concurrent queries only read the arrangement.
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) (void)e->curve().line();
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e)
     edges.push_back({to_eigen(e->source()->point()), to_eigen(e->target()->point())});
   edge_grid = std::make_unique<SegmentGrid>(edges);
