@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -232,10 +233,29 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       report.cancelled = true;
     } else if (options.outlier_threshold > 0) {
       const std::vector<double> errors = observation_errors(problem);
+      // Whole points that fit badly go too: a "corner" where an edge crosses a farther surface (no 3-D
+      // point) slides smoothly as the camera moves, so each of its observations is only a little off.
+      std::vector<double> point_sum(problem.points.size(), 0.0);
+      std::vector<int> point_count(problem.points.size(), 0);
+      for (size_t k = 0; k < errors.size(); ++k) {
+        point_sum[problem.observations[k].point] += errors[k] * errors[k];
+        ++point_count[problem.observations[k].point];
+      }
+      std::vector<double> point_rms;
+      for (size_t q = 0; q < point_sum.size(); ++q)
+        if (point_count[q] > 0) point_rms.push_back(std::sqrt(point_sum[q] / point_count[q]));
+      double point_limit = std::numeric_limits<double>::infinity();
+      if (options.point_outlier_factor > 0 && !point_rms.empty()) {
+        std::nth_element(point_rms.begin(), point_rms.begin() + point_rms.size() / 2, point_rms.end());
+        point_limit = options.point_outlier_factor * point_rms[point_rms.size() / 2];
+      }
       std::vector<BundleObservation> kept;
       kept.reserve(problem.observations.size());
-      for (size_t k = 0; k < errors.size(); ++k)
-        if (errors[k] <= options.outlier_threshold) kept.push_back(problem.observations[k]);
+      for (size_t k = 0; k < errors.size(); ++k) {
+        const int q = problem.observations[k].point;
+        if (errors[k] <= options.outlier_threshold && std::sqrt(point_sum[q] / point_count[q]) <= point_limit)
+          kept.push_back(problem.observations[k]);
+      }
       report.outliers_removed = static_cast<int>(problem.observations.size() - kept.size());
       problem.observations = std::move(kept);
       if (!solve_range(problem, options, 0, n - 1, 1, std::max(1, options.global_max_iterations / 2), progress,
