@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <utility>
 
+#include "model/error.h"
+#include "model/project.h"
 #include "processing/anchors/anchor_refinement.h"
+#include "processing/visibility.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -23,26 +26,41 @@ SetAnchorsCommand::SetAnchorsCommand(ProjectDocument& document, const QString& t
     applied_ = PathCorrection::kWarp;
   }
   path_before_ = path;
+  visibility_after_ = cells_following_path(document.project(), *path_after_);
+  if (visibility_after_) visibility_before_ = document.project().visibility;
 }
 
 void SetAnchorsCommand::undo() {
-  const unsigned flags = kAnchorsChanged | (path_before_ ? kPathChanged : 0u);
+  const unsigned flags =
+      kAnchorsChanged | (path_before_ ? kPathChanged : 0u) | (visibility_before_ ? kVisibilityChanged : 0u);
   document_.modify(
       [this](Project& p) {
         p.anchors = before_;
         if (path_before_) p.path = *path_before_;
+        if (visibility_before_) p.visibility = *visibility_before_;
       },
       flags);
 }
 
 void SetAnchorsCommand::redo() {
-  const unsigned flags = kAnchorsChanged | (path_after_ ? kPathChanged : 0u);
+  const unsigned flags =
+      kAnchorsChanged | (path_after_ ? kPathChanged : 0u) | (visibility_after_ ? kVisibilityChanged : 0u);
   document_.modify(
       [this](Project& p) {
         p.anchors = after_;
         if (path_after_) p.path = *path_after_;
+        if (visibility_after_) p.visibility = *visibility_after_;
       },
       flags);
+}
+
+std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path) {
+  if (project.visibility.empty()) return std::nullopt;
+  try {
+    return VisibilityIndex(project.plan).cells_along_path(moved_path);
+  } catch (const Error&) {
+    return VisibilityCells{};  // e.g. the plan has no occluders left: no cells rather than stale ones
+  }
 }
 
 Anchors anchors_with(const Anchors& anchors, int frame, const Eigen::Vector2d& position) {

@@ -8,6 +8,7 @@
 #include "processing/egomotion/egomotion.h"
 #include "processing/frame_source.h"
 #include "processing/visibility.h"
+#include "widgets/anchor_commands.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::studio {
@@ -110,7 +111,12 @@ widgets::TaskFunction refine_with_anchors_task() {
     std::snprintf(done, sizeof done, "refined in %d iterations; largest anchor residual %.3f m", report.iterations,
                   worst);
     progress.report(1.0, done);
-    return TaskResult{std::move(project), widgets::kPathChanged};
+    unsigned changed = widgets::kPathChanged;
+    if (std::optional<VisibilityCells> cells = widgets::cells_following_path(project, project.path)) {
+      project.visibility = std::move(*cells);
+      changed |= widgets::kVisibilityChanged;
+    }
+    return TaskResult{std::move(project), changed};
   };
 }
 

@@ -18,6 +18,7 @@
 #include "app/studio/studio_tasks.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "processing/visibility.h"
 #include "rig/synthetic_camera.h"
 #include "widgets/anchor_commands.h"
 #include "tests/widgets/test_project.h"
@@ -159,6 +160,33 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
   doc.undo_stack()->redo();
   doc.undo_stack()->redo();
   EXPECT_EQ(doc.project().path, bent);
+}
+
+// Visibility cells belong to a path: when an anchor moves the path, the cells are those of the moved path
+// (the map's colours and the visibility sampler use them), and undo brings back the old ones with the old path.
+TEST(Anchors, CellsFollowTheCorrectedPathAndUndoRestoresThem) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  widgets::MapView* map = s.window.map_view();
+  widgets::ProjectDocument& doc = s.window.document();
+  doc.modify([](Project& p) { p.visibility = VisibilityIndex(p.plan).cells_along_path(p.path); },
+             widgets::kVisibilityChanged);
+  const VisibilityCells cells_before = doc.project().visibility;
+  ASSERT_GT(cells_before.cells.size(), 1u) << "the half wall cuts the straight path into cells";
+  map->render_now();
+  // Frame 29 (7, 3.5) one metre south: the path turns about frame 0 and its far end crosses other
+  // visibility lines of the half wall's end.
+  drag(map, map->widget_pixel_of(doc.project().path.frames[29].position()), map->widget_pixel_of({7.0, 2.5}),
+       Qt::ControlModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  ASSERT_FALSE(doc.project().path == t.project.path);
+  const VisibilityCells expected = VisibilityIndex(doc.project().plan).cells_along_path(doc.project().path);
+  EXPECT_EQ(doc.project().visibility, expected);
+  EXPECT_FALSE(doc.project().visibility == cells_before);
+  doc.undo_stack()->undo();
+  EXPECT_EQ(doc.project().visibility, cells_before);
+  EXPECT_TRUE(doc.project().anchors.empty());
 }
 
 TEST(Anchors, DraggingAnAnchorMarkerMovesItAndShiftSnapsToAPlanCorner) {
