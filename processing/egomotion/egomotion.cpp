@@ -427,6 +427,9 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   const std::vector<Eigen::Vector3d> refined_kf = problem.poses;
 
   // ---- every frame against the refined points
+  std::vector<double> kf_steps;
+  for (int k = 1; k < kfn; ++k) kf_steps.push_back((refined_kf[k].head<2>() - refined_kf[k - 1].head<2>()).norm());
+  const double typical_kf_step = median(kf_steps);  // turns on the spot have none: bounds need a floor
   std::vector<Eigen::Vector3d> pose(n);
   const double inlier_threshold = std::max(4.0 * refinement.loss_scale, 3.0 * pixel_angle);
   for (int f = 0; f < n; ++f) {
@@ -448,7 +451,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       const int k0 = std::max(0, k1 - 1);
       const double kf_step = k1 < kfn ? (refined_kf[k1].head<2>() - refined_kf[k0].head<2>()).norm()
                                       : (k0 > 0 ? (refined_kf[k0].head<2>() - refined_kf[k0 - 1].head<2>()).norm() : 0.0);
-      const bool slipped = (p.head<2>() - pose[f].head<2>()).norm() > std::max(1e-9, kf_step) ||
+      const bool slipped = (p.head<2>() - pose[f].head<2>()).norm() > std::max(kf_step, 0.5 * typical_kf_step) ||
                            std::abs(p.z() - pose[f].z()) > opt.max_step_turn_disagreement_deg * deg;
       if (slipped) {
         add_flag(frames[f], kFrameBridged, "bridged: the frame's points place it away from its keyframes");
@@ -535,11 +538,12 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   // ---- jumps: a step far longer than its neighbours'
   std::vector<double> steps(n, 0.0);
   for (int f = 1; f < n; ++f) steps[f] = (pose[f].head<2>() - pose[f - 1].head<2>()).norm();
+  const double typical_step = median(std::vector<double>(steps.begin() + std::min(1, n - 1), steps.end()));
   for (int f = 1; f < n; ++f) {
     std::vector<double> local;
     for (int g = std::max(1, f - 10); g <= std::min(n - 1, f + 10); ++g)
       if (g != f) local.push_back(steps[g]);
-    const double m = median(local);
+    const double m = std::max(median(local), 0.25 * typical_step);  // a turn on the spot: steps near 0
     if (m > 0 && steps[f] > opt.jump_factor * m)
       add_flag(frames[f], kFrameJump, "jump: the step is much longer than its neighbours'");
   }

@@ -11,6 +11,13 @@
 #include "rig/spherical.h"
 
 namespace plenopath {
+namespace {
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+}  // namespace
 
 std::string KltOptions::check() const {
   std::ostringstream o;
@@ -21,6 +28,7 @@ std::string KltOptions::check() const {
   if (min_distance_px < 1) o << "min_distance_px must be >= 1; ";
   if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
   if (pyramid_levels < 0 || pyramid_levels > 6) o << "pyramid_levels must be in [0, 6]; ";
+  if (!(min_parallax_flow_px >= 0)) o << "min_parallax_flow_px must be >= 0; ";
   if (max_track_frames < 0 || max_track_frames == 1) o << "max_track_frames must be 0 or >= 2; ";
   if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90)) o << "max_abs_elevation_deg must be in (10, 90]; ";
   return o.str();
@@ -98,37 +106,58 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, status_back, error, window,
                                options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
     }
-    std::vector<double> flow;
+    // Which tracks continue, and whether the camera moved: a turn about the vertical shifts the whole
+    // panorama sideways by one amount, so what is left after removing the median sideways flow is the
+    // translation's parallax.
+    std::vector<char> continued(live_.size(), 0);
+    std::vector<double> flow, sideways;
     for (size_t k = 0; k < live_.size(); ++k) {
       bool ok = status[k] != 0;
       if (ok && check_back) {
         const float dx = back[k].x - from[k].x, dy = back[k].y - from[k].y;
         ok = status_back[k] != 0 && dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
       }
-      float x = to[k].x - pad_, y = to[k].y - pad_;
+      const float y = to[k].y - pad_;
       if (ok && (y < y_min || y > y_max)) ok = false;
-      if (!ok) {
+      continued[k] = ok;
+      if (!ok) continue;
+      flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
+      sideways.push_back(to[k].x - from[k].x);
+    }
+    const double turn_flow = median_of(sideways);
+    std::vector<double> parallax;
+    for (size_t k = 0; k < live_.size(); ++k)
+      if (continued[k]) parallax.push_back(std::hypot(to[k].x - from[k].x - turn_flow, to[k].y - from[k].y));
+    const bool moved = median_of(parallax) > options_.min_parallax_flow_px;
+    for (size_t k = 0; k < live_.size(); ++k) {
+      if (!continued[k]) {
         ++stats.lost;
         continue;
       }
-      flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
+      float x = to[k].x - pad_;
+      const float y = to[k].y - pad_;
       x = std::fmod(x, static_cast<float>(width_));
       if (x < 0) x += width_;
       if (x >= width_) x -= width_;
       FeatureTrack& track = tracks_[live_[k]];
+      int& age = moved_frames_[live_[k]];
+      if (moved) ++age;
       // Each track's own limit, between half and all of max_track_frames: tracks born together (all of
       // frame 0's) must not be cut together, or the points before and after that frame would share no
-      // track, and the two halves of the map would each keep their own scale.
+      // track, and the two halves of the map would each keep their own scale. Only frames in which the
+      // camera moved count: a turn on the spot does not change how a feature looks, and cutting every
+      // track during one would leave no point seen both before and after it (the scale would be lost).
       const int limit = options_.max_track_frames -
                         static_cast<int>((static_cast<std::uint64_t>(live_[k]) * 2654435761u) %
                                          static_cast<std::uint64_t>(options_.max_track_frames / 2 + 1));
-      if (options_.max_track_frames > 0 && static_cast<int>(track.observations.size()) >= limit) {
+      if (options_.max_track_frames > 0 && age >= limit) {
         // Continue as a new point from here (see KltOptions::max_track_frames). The new track starts one
         // frame back: its first pair of frames is then measured by the same track.
         FeatureTrack next;
         next.observations.push_back(track.observations.back());
         next.observations.push_back({frame_index, x, y});
         tracks_.push_back(std::move(next));
+        moved_frames_.push_back(1);
         still_live.push_back(static_cast<int>(tracks_.size()) - 1);
       } else {
         track.observations.push_back({frame_index, x, y});
@@ -136,10 +165,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       }
     }
     stats.tracked = static_cast<int>(still_live.size());
-    if (!flow.empty()) {
-      std::nth_element(flow.begin(), flow.begin() + flow.size() / 2, flow.end());
-      stats.median_flow_px = flow[flow.size() / 2];
-    }
+    stats.median_flow_px = median_of(flow);
   }
   live_ = still_live;
 
@@ -162,6 +188,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       FeatureTrack t;
       t.observations.push_back({frame_index, c.x, c.y});
       tracks_.push_back(std::move(t));
+      moved_frames_.push_back(0);
       live_.push_back(static_cast<int>(tracks_.size()) - 1);
       ++stats.detected;
     }

@@ -24,9 +24,12 @@ struct KltOptions {
   // A track longer than this many frames is cut and continued as a new track (a new 3-D point): frame-to-
   // frame KLT drifts (the equirect distortion around a feature changes as the camera moves), and a short
   // track keeps that drift below the refinement's noise. Each track is cut after between half and all of
-  // this (staggered, so tracks born together do not end together); the continuation shares the cut
-  // track's last observation. 0 = never cut.
+  // this many frames of camera motion (staggered, so tracks born together do not end together; a turn on
+  // the spot does not count); the continuation shares the cut track's last observation. 0 = never cut.
   int max_track_frames = 24;
+  // Frames count towards max_track_frames only when the camera moved: the median flow left after removing
+  // the median sideways flow (a turn) exceeds this (working pixels).
+  double min_parallax_flow_px = 0.15;
   std::string check() const;      // empty when valid
 };
 
@@ -68,6 +71,7 @@ class KltTracker {
   int frame_count_ = 0;
   std::vector<FeatureTrack> tracks_;
   std::vector<int> live_;  // indices of tracks observed in the last frame
+  std::vector<int> moved_frames_;  // per track: frames since its start in which the camera moved
   std::vector<cv::Mat> previous_pyramid_;
 };
 
