@@ -9,7 +9,7 @@ struct SamplingParameters {
   std::string method = "visibility";  // uniform | visibility | depth
   int count = 0;                      // budget as a keyframe count (0 = use ratio)
   double ratio = 50.0;                // budget as a reduction ratio (frames per keyframe)
-  double exponent = 3.0;              // l^exponent / v
+  double exponent = 1.0;              // l^exponent / v (cell rule; 1 measures best in the plan: bench_sampling)
   double transition_boost = 1.0;      // extra samples where the envelope changes much between cells
   double min_spacing_m = 0.0;
   double max_spacing_m = 0.0;         // 0 = no limit

@@ -64,13 +64,7 @@ int run(const Options& o, CLI::App* sub) {
   const CameraPath path = from_project ? project.path : read_path_file(o.path);
   if (path.empty()) throw Error(where + ": the camera path has no frames");
   std::unique_ptr<VisibilityIndex> index;
-  if (!plan.occluder_segments().empty()) {
-    // One thread inside the index: its multi-threaded cells_along_path was seen to corrupt the heap now
-    // and then (reported); the envelopes below still run on all cores.
-    VisibilityOptions visibility_options;
-    visibility_options.threads = 1;
-    index = std::make_unique<VisibilityIndex>(plan, visibility_options);
-  }
+  if (!plan.occluder_segments().empty()) index = std::make_unique<VisibilityIndex>(plan);
   if (o.parameters.method == "visibility" && !index)
     throw Error((o.plan.empty() ? where : o.plan) +
                 ": visibility sampling needs a floor plan with walls (give --plan PLAN.dxf)");

@@ -90,11 +90,7 @@ Scene make_scene(const FloorPlan& plan, double step) {
   AutoWalkOptions walk;
   walk.step = step;
   scene.path = auto_walk(plan, walk);
-  // One thread for the cells: with several, cells_along_path intermittently corrupted the heap here
-  // (about 1 run in 8 aborted, "unaligned tcache chunk"; none in 34 runs with one thread). Reported.
-  VisibilityOptions visibility_options;
-  visibility_options.threads = 1;
-  scene.index = std::make_unique<VisibilityIndex>(plan, visibility_options);
+  scene.index = std::make_unique<VisibilityIndex>(plan);
   scene.cells = scene.index->cells_along_path(scene.path);
   scene.envelopes = compute_path_envelopes(*scene.index, scene.path);
   return scene;
