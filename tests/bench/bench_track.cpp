@@ -5,7 +5,8 @@
 // Runs: 1024x512 clean, 1024x512 with noise + people, 2048x1024 clean, and a long run (10 000 frames of
 // 512x256 rendered on the fly through FrameSource::from_generator: the walk there and back, with turns on
 // the spot) that checks time and memory scale. PLENOPATH_BENCH_QUICK=1 leaves out the 2048 and long runs.
-// Usage: bench_track [--frames N] [--width W] [--noise] [--long] [--only]  (--only: just that one run)
+// Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--only]  (--only: just that one
+// run; --walk: the long run turns back after N frames of the walk)
 #include <sys/resource.h>
 
 #include <chrono>
@@ -33,6 +34,7 @@ struct RunSpec {
   int width = 1024;
   bool noise = false;
   bool long_walk = false;  // frames rendered on the fly (not kept), the walk repeated there and back
+  int walk_frames = 0;     // long runs: frames of the walk before turning back (0 = the whole walk)
 };
 
 double peak_rss_mb() {
@@ -87,7 +89,7 @@ nlohmann::json run(const RunSpec& spec) {
   SceneOptions scene_options;
   const SyntheticScene scene = build_synthetic_scene(plan, scene_options);
   AutoWalkOptions walk;
-  walk.max_frames = spec.long_walk ? 0 : spec.frames;
+  walk.max_frames = spec.long_walk ? spec.walk_frames : spec.frames;
   const CameraPath truth = spec.long_walk ? there_and_back(auto_walk(plan, walk), spec.frames) : auto_walk(plan, walk);
   RenderOptions render;
   render.width = spec.width;
@@ -163,6 +165,7 @@ nlohmann::json run(const RunSpec& spec) {
   // scale says how far the estimate's metres are off.
   return {{"frames", truth.size()},
           {"rendered_on_the_fly", spec.long_walk},
+          {"turns_back_after", spec.long_walk ? static_cast<int>(auto_walk(plan, walk).size()) : 0},
           {"peak_rss_mb", peak_rss_mb()},
           {"peak_rss_mb_before_tracking", rss_before_mb},
           {"size", {render.width, render.height}},
@@ -206,6 +209,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) spec.width = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--noise")) spec.noise = true;
     else if (!std::strcmp(argv[i], "--long")) spec.long_walk = true;
+    else if (!std::strcmp(argv[i], "--walk") && i + 1 < argc) spec.walk_frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only")) only = true;
   }
   nlohmann::json out;
@@ -214,12 +218,12 @@ int main(int argc, char** argv) {
     if (only) {
       out["runs"].push_back(run(spec));
     } else {
-      out["runs"].push_back(run({spec.frames, 1024, false, false}));
-      out["runs"].push_back(run({spec.frames, 1024, true, false}));
+      out["runs"].push_back(run({spec.frames, 1024, false, false, 0}));
+      out["runs"].push_back(run({spec.frames, 1024, true, false, 0}));
       const char* quick = std::getenv("PLENOPATH_BENCH_QUICK");
       if (!quick || std::string(quick) != "1") {
-        out["runs"].push_back(run({spec.frames, 2048, false, false}));
-        out["runs"].push_back(run({10000, 512, false, true}));
+        out["runs"].push_back(run({spec.frames, 2048, false, false, 0}));
+        out["runs"].push_back(run({10000, 512, false, true, 0}));
       }
     }
   } catch (const std::exception& e) {

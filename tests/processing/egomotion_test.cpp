@@ -225,6 +225,48 @@ TEST(Egomotion, NoiseAndMovingPeopleStayWithinTwoPercent) {
   EXPECT_LT(e.scale_error_pct, 10.0);
 }
 
+// Forward, a half turn on the spot, and back along the same way: the turn has no translation to measure, so
+// only points seen before, during and after it carry the scale across. Both legs must keep one scale.
+TEST(Egomotion, TurnOnTheSpotKeepsOneScale) {
+  const Walk& walk = short_walk();
+  const FloorPlan plan = make_office_sample_plan();
+  const SyntheticScene scene = build_synthetic_scene(plan);
+  CameraPath truth;
+  for (int i = 0; i < 40; ++i) truth.frames.push_back(walk.truth.frames[i]);
+  for (int k = 1; k <= 30; ++k) {
+    PathFrame f = walk.truth.frames[39];
+    f.heading = wrap_angle(f.heading + M_PI * k / 30);
+    truth.frames.push_back(f);
+  }
+  for (int i = 38; i >= 0; --i) {
+    PathFrame f = walk.truth.frames[i];
+    f.heading = wrap_angle(f.heading + M_PI);
+    truth.frames.push_back(f);
+  }
+  for (size_t i = 0; i < truth.size(); ++i) truth.frames[i].index = static_cast<int>(i);
+  RenderOptions render;
+  render.width = 512;
+  render.height = 256;
+  render.depth = false;
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
+      options);
+  ASSERT_EQ(r.path.size(), truth.size());
+  const PathErrors e = evaluate_path(r.path, truth);
+  EXPECT_LT(e.ate_pct, 1.0);
+  EXPECT_LT(e.scale_error_pct, 5.0);
+  // The way back retraces the way out: each return frame lies where its outbound twin was.
+  double worst = 0.0;
+  for (int i = 0; i < 39; ++i) {
+    const PathFrame& out = r.path.frames[i];
+    const PathFrame& back = r.path.frames[108 - i];  // 40 out, 30 turning, then 38 down to 0
+    worst = std::max(worst, std::hypot(out.x - back.x, out.y - back.y));
+  }
+  EXPECT_LT(worst, 0.05 * e.truth_length_m / 2) << "outbound and return legs disagree";
+}
+
 TEST(Egomotion, CancelDuringRefinementStopsCleanly) {
   const Walk& walk = short_walk();
   EgomotionOptions options;
