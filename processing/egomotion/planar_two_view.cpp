@@ -156,8 +156,17 @@ bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres, const std::ve
     max_angle = std::max(max_angle, std::acos(std::clamp(directions[0].dot(directions[i]), -1.0, 1.0)));
   if (max_angle < min_angle) return false;
   const Eigen::Vector3d x = a.ldlt().solve(rhs);
+  if (!x.allFinite()) return false;
   for (size_t i = 0; i < n; ++i)
     if ((x - centres[i]).dot(directions[i]) <= 0) return false;
+  // The baseline must subtend the angle too, seen from the point: rays from one centre (a turn on the spot,
+  // with headings a little off) diverge and "meet" at that centre, which no scene point is.
+  double subtended = 0.0;
+  for (size_t i = 1; i < n; ++i) {
+    const Eigen::Vector3d u = centres[0] - x, v = centres[i] - x;
+    subtended = std::max(subtended, std::atan2(u.cross(v).norm(), u.dot(v)));
+  }
+  if (subtended < min_angle) return false;
   *point = x;
   return true;
 }

@@ -36,7 +36,8 @@ PlanarRelativePose estimate_planar_relative_pose(const std::vector<Eigen::Vector
 double planar_epipolar_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double turn, double direction);
 
 // Midpoint triangulation from rays (centres and unit world directions). Returns false when the rays are
-// nearly parallel (max pairwise angle below min_angle) or the point is behind a camera.
+// nearly parallel (max pairwise angle below min_angle), the centres subtend less than min_angle seen from
+// the point, or the point is behind a camera.
 bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres, const std::vector<Eigen::Vector3d>& directions,
                       double min_angle, Eigen::Vector3d* point);
 
