@@ -54,4 +54,9 @@ echo
 echo "Visibility events and cells along the walk:"
 "$cli" visibility --plan "$sample_dir/office.dxf" --path "$sample_dir/office_path.json" | head -n 3 || true
 echo
+echo "Keyframes at 30x fewer images, uniform against visibility-driven (what each loses):"
+for method in uniform visibility; do
+  "$cli" sample --project "$project" --method "$method" --ratio 30 --photometric-frames 0 | head -n 3 || true
+done
+echo
 echo "No display: this was the headless run. On a desktop, \`make run\` opens the studio on $project."
