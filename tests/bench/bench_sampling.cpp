@@ -18,22 +18,16 @@
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/plan_oracle.h"
 
 using namespace plenopath;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using test::add_wall;
 
-void add_wall(FloorPlan* plan, Eigen::Vector2d a, Eigen::Vector2d b) {
-  PlanSegment s;
-  s.a = a;
-  s.b = b;
-  s.layer = "WALLS";
-  s.occluder = true;
-  plan->segments.push_back(s);
-}
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A random office: a grid of rooms of random sizes, every inner wall with a 1 m door at a random place,
 // and a few pillars.

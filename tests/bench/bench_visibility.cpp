@@ -14,20 +14,14 @@
 #include <random>
 
 #include "processing/visibility.h"
+#include "tests/processing/plan_oracle.h"
 
 using namespace plenopath;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
-void add_wall(FloorPlan* plan, Eigen::Vector2d a, Eigen::Vector2d b) {
-  PlanSegment s;
-  s.a = a;
-  s.b = b;
-  s.layer = "WALLS";
-  s.occluder = true;
-  plan->segments.push_back(s);
-}
+using test::add_wall;
 
 // A 100 m x 60 m hall with 25 x 10 rotated square pillars (4 segments each) between corridors at
 // y = 6, 12, ..., 54: 1 004 segments.

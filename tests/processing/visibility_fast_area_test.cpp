@@ -11,24 +11,16 @@
 #include "model/path_io.h"
 #include "processing/visibility.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/plan_oracle.h"
 
 namespace plenopath {
 namespace {
 
+using test::add_wall;
+using test::add_polygon;
+using test::ray_cast_area;
+
 using Vec = Eigen::Vector2d;
-
-void add_wall(FloorPlan* plan, Vec a, Vec b) {
-  PlanSegment s;
-  s.a = a;
-  s.b = b;
-  s.layer = "WALLS";
-  s.occluder = true;
-  plan->segments.push_back(s);
-}
-
-void add_polygon(FloorPlan* plan, const std::vector<Vec>& pts) {
-  for (std::size_t i = 0; i < pts.size(); ++i) add_wall(plan, pts[i], pts[(i + 1) % pts.size()]);
-}
 
 // A 20 m x 15 m room split by a wall at x = 10 with a door (T-junctions), rotated pillars and dangling
 // stubs from the bottom wall.
@@ -56,33 +48,6 @@ FloorPlan random_plan(std::mt19937* rng) {
     add_wall(&plan, {x, 0.0}, {x, stub(*rng)});
   }
   return plan;
-}
-
-// Distance along the ray (p, angle) to the first wall, or infinity.
-double cast(const std::vector<PlanSegment>& walls, const Vec& p, double angle) {
-  const Vec d(std::cos(angle), std::sin(angle));
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& w : walls) {
-    const Vec a = w.a - p, e = w.b - w.a;
-    const double denom = d.x() * e.y() - d.y() * e.x();
-    if (std::abs(denom) < 1e-15) continue;
-    const double t = (a.x() * e.y() - a.y() * e.x()) / denom;
-    const double u = (a.x() * d.y() - a.y() * d.x()) / denom;
-    if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-  }
-  return best;
-}
-
-// Area seen from p: the fan of the ray hits (N rays).
-double ray_cast_area(const std::vector<PlanSegment>& walls, const Vec& p, int rays) {
-  double area = 0.0;
-  double first = cast(walls, p, 0.0), prev = first;
-  for (int k = 1; k <= rays; ++k) {
-    const double r = k == rays ? first : cast(walls, p, 2 * M_PI * k / rays);
-    area += 0.5 * prev * r * std::sin(2 * M_PI / rays);
-    prev = r;
-  }
-  return area;
 }
 
 std::vector<Vec> free_points(const VisibilityIndex& index, std::mt19937* rng, int n) {

@@ -8,57 +8,18 @@
 
 #include "model/error.h"
 #include "processing/visibility.h"
+#include "tests/processing/plan_oracle.h"
 
 namespace plenopath {
 namespace {
 
+using test::add_wall;
+using test::add_polygon;
+using test::add_rectangle;
+using test::cast_ray;
+using test::ray_cast_area;
+
 using Vec = Eigen::Vector2d;
-
-void add_wall(FloorPlan* plan, Vec a, Vec b) {
-  PlanSegment s;
-  s.a = a;
-  s.b = b;
-  s.layer = "WALLS";
-  s.occluder = true;
-  plan->segments.push_back(s);
-}
-
-void add_polygon(FloorPlan* plan, const std::vector<Vec>& pts) {
-  for (std::size_t i = 0; i < pts.size(); ++i) add_wall(plan, pts[i], pts[(i + 1) % pts.size()]);
-}
-
-void add_rectangle(FloorPlan* plan, Vec c, double w, double h, double angle) {
-  const Eigen::Rotation2Dd r(angle);
-  add_polygon(plan, {c + r * Vec(-w / 2, -h / 2), c + r * Vec(w / 2, -h / 2), c + r * Vec(w / 2, h / 2),
-                     c + r * Vec(-w / 2, h / 2)});
-}
-
-// Distance along the ray (p, angle) to the first wall, or infinity.
-double cast(const std::vector<PlanSegment>& walls, const Vec& p, double angle) {
-  const Vec d(std::cos(angle), std::sin(angle));
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& w : walls) {
-    const Vec a = w.a - p, e = w.b - w.a;
-    const double denom = d.x() * e.y() - d.y() * e.x();
-    if (std::abs(denom) < 1e-15) continue;
-    const double t = (a.x() * e.y() - a.y() * e.x()) / denom;
-    const double u = (a.x() * d.y() - a.y() * d.x()) / denom;
-    if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-  }
-  return best;
-}
-
-// Area seen from p: the fan of the ray hits (N rays).
-double ray_cast_area(const std::vector<PlanSegment>& walls, const Vec& p, int rays) {
-  double area = 0.0;
-  double first = cast(walls, p, 0.0), prev = first;
-  for (int k = 1; k <= rays; ++k) {
-    const double r = k == rays ? first : cast(walls, p, 2 * M_PI * k / rays);
-    area += 0.5 * prev * r * std::sin(2 * M_PI / rays);
-    prev = r;
-  }
-  return area;
-}
 
 // The sample-like plan: an L-shaped flat with interior walls (T-junctions, a door gap = a dangling wall)
 // and two pillars.
@@ -107,7 +68,7 @@ TEST(Visibility, SamplePlanMatchesRayCaster) {
     const int samples = 720;
     const auto radial = index.radial_function(p, samples);
     for (int k = 0; k < samples; ++k) {
-      const double t = cast(walls, p, 2 * M_PI * k / samples);
+      const double t = cast_ray(walls, p, 2 * M_PI * k / samples);
       ASSERT_NEAR(radial[k], t, 1e-6) << p.transpose() << " k " << k;
     }
   }
@@ -151,7 +112,7 @@ TEST(Visibility, RandomPlansMatchRayCaster) {
       ++checked;
       EXPECT_NEAR(e.area / ray_cast_area(walls, p, 20000), 1.0, 1e-3) << "plan " << plan_index << " " << p.transpose();
       const auto radial = index.radial_function(p, 360);
-      for (int k = 0; k < 360; ++k) ASSERT_NEAR(radial[k], cast(walls, p, 2 * M_PI * k / 360), 1e-6);
+      for (int k = 0; k < 360; ++k) ASSERT_NEAR(radial[k], cast_ray(walls, p, 2 * M_PI * k / 360), 1e-6);
     }
     EXPECT_EQ(checked, 5);
   }

@@ -4,17 +4,11 @@
 
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
+#include "tests/processing/plan_oracle.h"
 
 namespace plenopath::sampling_test {
 
-inline void add_wall(FloorPlan* plan, Eigen::Vector2d a, Eigen::Vector2d b) {
-  PlanSegment s;
-  s.a = a;
-  s.b = b;
-  s.layer = "WALLS";
-  s.occluder = true;
-  plan->segments.push_back(s);
-}
+using test::add_wall;
 
 // A path along +X from (x0, y): frame i at x0 + i * step, heading 0.
 inline CameraPath straight_path(int n, double step, double x0 = 0.0, double y = 0.0) {
