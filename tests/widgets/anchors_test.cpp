@@ -22,6 +22,7 @@
 #include "rig/synthetic_camera.h"
 #include "widgets/anchor_commands.h"
 #include "tests/widgets/test_project.h"
+#include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/anchors_panel.h"
 #include "widgets/document_commands.h"
@@ -35,18 +36,7 @@ namespace {
 using studio::MainWindow;
 using test::test_project;
 
-struct Studio {
-  MainWindow window;
-  Studio() {
-    window.ask_recovery = [](const QString&) { return false; };
-    window.ask_save_changes = [] { return QMessageBox::Discard; };
-    window.show_error = [this](const QString& title, const QString& message) { errors << title + ": " + message; };
-    window.resize(1400, 900);
-    window.show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
-  }
-  QStringList errors;
-};
+using Studio = test::TestStudio;
 
 void send_mouse(QWidget* widget, QEvent::Type type, QPoint pixel, Qt::MouseButtons buttons,
                 Qt::KeyboardModifiers modifiers) {

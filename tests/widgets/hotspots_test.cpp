@@ -22,6 +22,7 @@
 #include "processing/hotspots/hotspot_geometry.h"
 #include "processing/hotspots/hotspot_validation.h"
 #include "tests/widgets/test_project.h"
+#include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/hotspot_editor.h"
 #include "widgets/hotspots_panel.h"
@@ -39,17 +40,7 @@ using widgets::HotspotEditor;
 
 constexpr double kCameraHeight = 1.6;  // the synthetic renderer's, and the studio's default
 
-struct Studio {
-  MainWindow window;
-  QStringList errors;
-  Studio() {
-    window.ask_recovery = [](const QString&) { return false; };
-    window.ask_save_changes = [] { return QMessageBox::Discard; };
-    window.show_error = [this](const QString& title, const QString& message) { errors << title + ": " + message; };
-    window.resize(1400, 900);
-    window.show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
-  }
+struct Studio : test::TestStudio {
   widgets::ProjectDocument& document() { return window.document(); }
   widgets::PanoramaView* pano() { return window.panorama_view(); }
   HotspotEditor& editor() { return window.panorama_view()->hotspot_editor(); }

@@ -33,6 +33,7 @@
 #include "rig/equirect_sampling.h"
 #include "rig/spherical.h"
 #include "tests/widgets/test_project.h"
+#include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/document_commands.h"
 #include "widgets/map_view.h"
@@ -50,19 +51,7 @@ using test::test_project;
 
 using test::wait_until;
 
-// A main window that never blocks on a question.
-struct Studio {
-  MainWindow window;
-  Studio() {
-    window.ask_recovery = [](const QString&) { return false; };
-    window.ask_save_changes = [] { return QMessageBox::Discard; };
-    window.show_error = [this](const QString& title, const QString& message) { errors << title + ": " + message; };
-    window.resize(1400, 900);
-    window.show();
-    EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
-  }
-  QStringList errors;
-};
+using Studio = test::TestStudio;
 
 bool near_colour(QRgb c, int r, int g, int b, int tolerance) {
   return std::abs(qRed(c) - r) <= tolerance && std::abs(qGreen(c) - g) <= tolerance &&
