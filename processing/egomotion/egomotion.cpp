@@ -302,7 +302,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       dirs.push_back(rotate_z(bearing(t, *it), kf_pose[k].z()));
     }
     Eigen::Vector3d p;
-    if (triangulate_rays(centres, dirs, opt.min_triangulation_deg * deg, &p)) {
+    if (triangulate_rays(centres, dirs, opt.min_triangulation_deg * coarseness * deg, &p)) {
       point[t] = p;
       point_valid[t] = 1;
     }
@@ -350,11 +350,13 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       } else {
         length = std::max(0.0, median(lengths));
       }
-      // A step many times the recent ones is a bad measurement (points near the direction of travel), not
-      // a trolley that suddenly ran: bridge it.
+      // A step many times longer or shorter than the recent ones is a bad measurement (points near the
+      // direction of travel, or too few), not a trolley that suddenly ran or crawled: bridge it. (Keyframes
+      // are cut by parallax, so their steps stay alike; a turn on the spot is handled above.) A wrong short
+      // step would also shrink every later step, which is measured against the points it placed.
       if (recent_lengths.size() >= 3) {
         const double typical = median(recent_lengths);
-        if (length > opt.max_step_ratio * typical) {
+        if (length > opt.max_step_ratio * typical || length < typical / opt.max_step_ratio) {
           length = typical;
           kf_bridged[k] = true;
         }

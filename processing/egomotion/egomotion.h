@@ -38,7 +38,7 @@ struct EgomotionOptions {
   // A two-view turn (consecutive frames, or keyframes) this far from the turn the tracks' azimuths suggest
   // is taken for a wrong solution.
   double max_step_turn_disagreement_deg = 3.0;
-  double max_step_ratio = 5.0;          // a keyframe step this many times the recent median is bridged
+  double max_step_ratio = 5.0;          // a keyframe step this many times above or below the recent median is bridged
   double min_triangulation_deg = 1.0;   // rays of a point must span at least this angle
   double max_initial_error_deg = 1.0;   // observations this far off after initialisation are dropped
   int min_point_keyframes = 3;          // a point enters the refinement when seen from this many keyframes
