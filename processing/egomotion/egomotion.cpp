@@ -290,8 +290,12 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   std::vector<Eigen::Vector3d> point(tracks.size(), Eigen::Vector3d::Zero());
   std::vector<char> point_valid(tracks.size(), 0);
   std::vector<bool> kf_bridged(kfn, false);
-  std::vector<double> recent_lengths;  // the last measured keyframe steps
-  double last_length = 1.0, last_direction = kf_pose[0].z();
+  // Speeds (length per frame) rather than keyframe steps: keyframes are a varying number of frames apart,
+  // and a gap bridged with the last step's length instead of the last speed shrinks (or stretches) the scale
+  // of everything after it (seen: a 9-frame gap bridged with a 2-frame step left the rest of a 2 600-frame
+  // walk at 0.3 of its scale).
+  std::vector<double> recent_speeds;  // the last measured keyframe steps per frame
+  double last_speed = 0.0, last_direction = kf_pose[0].z();
   auto triangulate_track = [&](int t, int up_to_kf) {
     const auto& obs = tracks[t].observations;
     std::vector<Eigen::Vector3d> centres, dirs;
@@ -318,6 +322,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       shared.push_back(t);
     }
     const double turn_guess = heading[b] - heading[a];
+    const int gap = b - a;
+    const double bridge_length = (last_speed > 0 ? last_speed : 1.0 / gap) * gap;  // frame 0 -> 1: unit
     PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
     // The tracked turn is good to a fraction of a degree: a two-view turn far from it is a wrong solution.
     if (rel.valid && std::abs(rel.turn - turn_guess) > opt.max_step_turn_disagreement_deg * deg) rel.valid = false;
@@ -345,7 +351,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       if (lengths.size() >= 8) {
         length = std::max(0.0, median(lengths));
       } else if (k == 1 || lengths.empty()) {
-        length = last_length;
+        length = bridge_length;
         if (k > 1) kf_bridged[k] = true;
       } else {
         length = std::max(0.0, median(lengths));
@@ -354,8 +360,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       // direction of travel, or too few), not a trolley that suddenly ran or crawled: bridge it. (Keyframes
       // are cut by parallax, so their steps stay alike; a turn on the spot is handled above.) A wrong short
       // step would also shrink every later step, which is measured against the points it placed.
-      if (recent_lengths.size() >= 3) {
-        const double typical = median(recent_lengths);
+      if (recent_speeds.size() >= 3) {
+        const double typical = median(recent_speeds) * gap;
         if (length > opt.max_step_ratio * typical || length < typical / opt.max_step_ratio) {
           length = typical;
           kf_bridged[k] = true;
@@ -364,17 +370,17 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     } else if (rel.median_parallax < two_view.min_parallax && !ba.empty()) {
       length = 0.0;  // a turn on the spot: no translation to see
     } else {
-      length = last_length;  // cannot solve this stretch: bridge it with the previous step
+      length = bridge_length;  // cannot solve this stretch: bridge it at the last speed
       kf_bridged[k] = true;
     }
     pb.x() = pa.x() + length * std::cos(direction);
     pb.y() = pa.y() + length * std::sin(direction);
     if (length > 0) {
-      last_length = length;
+      last_speed = length / gap;
       last_direction = direction;
       if (!kf_bridged[k]) {
-        recent_lengths.push_back(length);
-        if (recent_lengths.size() > 9) recent_lengths.erase(recent_lengths.begin());
+        recent_speeds.push_back(length / gap);
+        if (recent_speeds.size() > 9) recent_speeds.erase(recent_speeds.begin());
       }
     }
     for (int t : frame_tracks[b]) triangulate_track(t, k);
