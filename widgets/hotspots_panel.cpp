@@ -18,6 +18,7 @@
 #include <QVBoxLayout>
 #include <exception>
 
+#include "model/hotspots.h"
 #include "widgets/hotspot_commands.h"
 #include "widgets/hotspot_editor.h"
 #include "widgets/project_document.h"
@@ -29,7 +30,7 @@ namespace {
 // Actions as stored (model/hotspots.h) and as shown.
 const std::vector<std::pair<const char*, const char*>> kActions{
     {"", "(none)"},
-    {"swap_image", "Swap for another image"},
+    {"swap_image", "Swap for another image or image sequence"},
     {"play_video", "Play a video"},
     {"play_sound", "Play a sound"},
     {"jump", "Jump to a frame or tour"},
@@ -38,17 +39,15 @@ const std::vector<std::pair<const char*, const char*>> kActions{
 };
 
 QString target_hint(const std::string& action) {
-  if (action == "swap_image") return QObject::tr("image file shown instead of the region");
+  if (action == "swap_image")
+    return QObject::tr("image shown instead of the region, or a video of an image sequence (played once, then "
+                       "held; `plenopath encode-video` makes one from frames)");
   if (action == "play_video") return QObject::tr("video file (empty: the movie texture's own video)");
   if (action == "play_sound") return QObject::tr("sound file");
   if (action == "jump") return QObject::tr("frame number, or another tour's http(s) address");
   if (action == "open_url") return QObject::tr("http(s) address");
   if (action == "show_text") return QObject::tr("text shown as plain text");
   return QString();
-}
-
-bool target_is_file(const std::string& action) {
-  return action == "swap_image" || action == "play_video" || action == "play_sound";
 }
 
 }  // namespace
@@ -78,7 +77,7 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   ask_file = [this](const QString& what, const QString& current) {
     const QString filter = what == "media" ? tr("Images and videos (*.png *.jpg *.jpeg *.webp *.gif *.bmp *.mp4 *.m4v "
                                                 "*.webm *.mov *.mkv *.avi);;All files (*)")
-                                           : tr("Media (*.png *.jpg *.jpeg *.webp *.gif *.mp4 *.webm *.mp3 *.ogg "
+                                           : tr("Media (*.png *.jpg *.jpeg *.webp *.gif *.mp4 *.m4v *.webm *.mov *.mp3 *.ogg "
                                                 "*.wav);;All files (*)");
     return QFileDialog::getOpenFileName(this, what == "media" ? tr("Media for the hotspot") : tr("Action target"),
                                         current, filter);
@@ -301,7 +300,7 @@ void HotspotsPanel::show_selected() {
     w->setEnabled(h->kind == HotspotKind::kEvent);
   set_text(target_, QString::fromStdString(h->action_target));
   target_->setPlaceholderText(target_hint(h->action));
-  choose_target_->setEnabled(h->kind == HotspotKind::kEvent && target_is_file(h->action));
+  choose_target_->setEnabled(h->kind == HotspotKind::kEvent && hotspot_action_uses_media(h->action));
   info_->setText(h->world_corners.size() >= 3
                      ? tr("%1 corners in 3-D, marked in frame %2: shown in every frame that sees it.")
                            .arg(h->world_corners.size())

@@ -161,7 +161,8 @@ std::vector<HotspotWarning> validate_hotspot(const Hotspot& h, const Project& pr
       add(out, h, "trigger_distance_m", "a proximity trigger needs a distance > 0");
     const std::string& t = h.action_target;
     if (h.action == "swap_image") {
-      const std::string problem = media_problem(t, "image", options.decode_media);
+      // An image, or a video standing for an image sequence (`plenopath encode-video` makes one from frames).
+      const std::string problem = media_problem(t, "visual", options.decode_media);
       if (!problem.empty()) add(out, h, "action_target", "swap image: " + problem);
     } else if (h.action == "play_video") {
       // A movie texture's own video plays in place; otherwise the target is the video.

@@ -16,6 +16,7 @@
   const player = {
     state: { yaw: 0, pitch: 0, fov: 75, s: 0, keyframe: -1, level: 'none', moving: false },
     events: [],                  // fired hotspot actions, newest last (for embedding pages and tests)
+    get hotspots() { return hotspots; },  // their live state: swapped, loaded media (for tests)
     ready: null,
   };
   window.plenopathPlayer = player;
@@ -54,6 +55,21 @@
       img.src = url;
     }));
   }
+
+  // An image sequence (the lift doors opening) travels as a video: played once on the region, it then holds
+  // its last frame. Resolves when the first frame can be drawn.
+  function loadSequence(path, script) {
+    return assetUrl(path, script).then((url) => new Promise((resolve, reject) => {
+      const v = document.createElement('video');
+      v.muted = true; v.loop = false; v.playsInline = true; v.preload = 'auto';
+      v.addEventListener('loadeddata', () => { resolve(v); requestDraw(); }, { once: true });
+      v.addEventListener('error', () => reject(new Error('cannot load ' + path)), { once: true });
+      v.src = url;
+      v.play().catch(() => {});
+    }));
+  }
+
+  function isVideoFile(path) { return /\.(mp4|webm|ogv|mov|m4v)$/i.test(path); }
 
   function loadTour() {
     if (window.PLENOPATH_TOUR) return Promise.resolve(window.PLENOPATH_TOUR);
@@ -347,12 +363,18 @@
 
   function fire(h) {
     player.events.push({ id: h.id, action: h.action, time: Date.now() });
+    requestDraw();  // a swap (either way) must show at once, even when nothing else is moving
     const target = h.action_target || '';
     switch (h.action) {
       case 'swap_image':
         h.swapped = !h.swapped;
+        if (h.swapped && h.actionImage instanceof HTMLVideoElement) {
+          h.actionImage.currentTime = 0;  // the sequence plays again from its start
+          h.actionImage.play().catch(() => {});
+        }
         if (h.swapped && !h.actionImage && target) {
-          loadImage(target, h.actionScript).then((img) => { h.actionImage = img; }).catch(() => {
+          const load = isVideoFile(target) ? loadSequence(target, h.actionScript) : loadImage(target, h.actionScript);
+          load.then((media) => { h.actionImage = media; requestDraw(); }).catch(() => {
             h.swapped = false;
             showPanel(h.title, 'The alternative image could not be loaded.');
           });
@@ -747,7 +769,8 @@
         `${player.state.s.toFixed(1)} m of ${(frames.length ? frames[frames.length - 1].s : 0).toFixed(1)} m · ${k.level}`;
     }
     const fading = performance.now() - fade.start < FADE_MS;
-    const video = hotspots.some((s) => s.mediaElement instanceof HTMLVideoElement && !s.mediaElement.paused);
+    const playing = (m) => m instanceof HTMLVideoElement && !m.paused && !m.ended;
+    const video = hotspots.some((s) => playing(s.mediaElement) || (s.swapped && playing(s.actionImage)));
     if (animating || fading || video) requestDraw();
   }
 
@@ -776,7 +799,7 @@
       spot.actionScript = spot.action_target && /^media\//.test(spot.action_target) ? spot.action_target.replace(/\.[^.]+$/, '.js') : '';
       if (h.media) {
         const script = h.media.replace(/\.[^.]+$/, '.js');
-        if (/\.(mp4|webm|ogv|mov|m4v)$/i.test(h.media)) {
+        if (isVideoFile(h.media)) {
           assetUrl(h.media, script).then((url) => {
             const v = document.createElement('video');
             v.muted = true; v.loop = true; v.playsInline = true; v.src = url;

@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Opens an exported tour in headless Chromium and checks it as a viewer would.
 
-usage: player_check.py PACKAGE_DIR SCREENSHOT_PREFIX [--xss-title TITLE] [--no-hotspots]
+usage: player_check.py PACKAGE_DIR SCREENSHOT_PREFIX [--xss-title TITLE] [--no-hotspots] [--swap-sequence]
 
 Talks to Chromium over --remote-debugging-pipe (DevTools protocol, NUL-separated JSON on fds 3 and 4), so it
 needs nothing but Debian's chromium and python3. Checks: the panorama canvas renders non-blank; a walk key
 moves to another keyframe and the picture changes; clicking a hotspot fires its action; a hotspot title that
-holds markup is shown as text and never executed. Writes SCREENSHOT_PREFIX-start.png and -walked.png.
+holds markup is shown as text and never executed; with --swap-sequence, the clicked hotspot swaps its region
+for an image sequence that plays, holds its last frame, and swaps back on a second click. Writes SCREENSHOT_PREFIX-start.png and -walked.png.
 """
 import base64, json, os, subprocess, sys, tempfile, time
 
@@ -131,6 +132,38 @@ def check_hotspot_click(b, spot):
     if events[-1]['action'] == 'show_text' and b.evaluate("document.getElementById('panel').hidden"):
         fail('show_text did not open the panel')
     b.key('Escape', 'Escape', 27)
+    return via
+
+
+def check_swap_sequence(b, spot, before, prefix):
+    """After the first click on a swap_image hotspot whose target is a video: the region shows the sequence."""
+    if b.evaluate("window.plenopathPlayer.events.slice(-1)[0].action") != 'swap_image':
+        fail('the hotspot is not a swap_image event')
+    b.wait_for("(() => { const h = window.plenopathPlayer.hotspots.find(s => s.swapped);"
+               " return !!(h && h.actionImage && h.actionImage.readyState >= 2); })()", timeout=15,
+               what='the image sequence to load')
+    time.sleep(0.15)
+    early = b.evaluate(PIXELS)
+    b.wait_for("window.plenopathPlayer.hotspots.find(s => s.swapped).actionImage.ended", timeout=15,
+               what='the image sequence to play to its end')
+    time.sleep(0.5)
+    late = b.evaluate(PIXELS)
+    b.screenshot(prefix + '-swapped.png')
+    time.sleep(0.5)
+    held = b.evaluate(PIXELS)
+    print('swap: before %d, early %d, end %d, held %d' % (before['hash'], early['hash'], late['hash'], held['hash']))
+    if early['hash'] == before['hash']:
+        fail('the region did not change when the sequence was swapped in')
+    if late['hash'] == early['hash']:
+        fail('the sequence did not play (the picture stayed the same)')
+    if held['hash'] != late['hash']:
+        fail('the sequence does not hold its last frame')
+    b.click(spot['x'], spot['y'])
+    time.sleep(0.5)
+    back = b.evaluate(PIXELS)
+    if back['hash'] != before['hash']:
+        fail('a second click did not bring the original region back')
+    print('sequence swapped in, played, held its last frame, swapped back')
 
 
 def main():
@@ -181,7 +214,12 @@ def main():
         if spot is None and '--no-hotspots' not in sys.argv:
             fail('no hotspot is visible from the start view')
         if spot is not None:
-            check_hotspot_click(b, spot)
+            before = b.evaluate(PIXELS)
+            via = check_hotspot_click(b, spot)
+            if '--swap-sequence' in sys.argv:
+                if via != 'canvas':
+                    fail('the swap hotspot was not hit on the canvas')
+                check_swap_sequence(b, spot, before, prefix)
 
         # Walk forward: another keyframe, another picture.
         b.evaluate("document.getElementById('view').focus()")

@@ -16,6 +16,8 @@
 #include "processing/export/tour_export.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/zip_writer.h"
+#include "processing/frame_source.h"
+#include "processing/video_encode.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
@@ -366,6 +368,36 @@ TEST(TourPlayer, WalksAndReactsInHeadlessChromium) {
   export_tour(p, options);
   const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) + "/tests/app/player_check.py' '" +
                           options.output + "' '" + (work / "player").string() + "' --xss-title '" + xss + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+}
+
+// An event hotspot that swaps its region for an image sequence (the lift doors opening), given as a video:
+// a click swaps the poster for the sequence, which plays (the picture keeps changing) and then holds its last
+// frame; a second click brings the poster back.
+TEST(TourPlayer, SwapsARegionForAnImageSequence) {
+  const fs::path work = fs::path(PLENOPATH_BINARY_DIR) / "player_check_sequence";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  Project p = make_rendered_project(work / "capture", 12, 1024);
+  // Twelve frames at 8 fps, 1.5 s: red to blue, so consecutive frames differ.
+  const auto frames = FrameSource::from_generator(12, 64, 48, 8.0, [](int k) {
+    return cv::Mat(48, 64, CV_8UC3, cv::Scalar(20 * k, 40, 240 - 20 * k));
+  });
+  const std::string doors = (work / "doors.mp4").string();
+  encode_video(*frames, doors);
+  Hotspot& tv = p.hotspots[0];
+  tv.kind = HotspotKind::kEvent;
+  tv.title = "Lift doors";
+  tv.action = "swap_image";
+  tv.action_target = doors;
+  TourExportOptions options;
+  options.output = (work / "tour").string();
+  options.max_size = 1024;
+  options.preview_size = 256;
+  const TourExportReport report = export_tour(p, options);
+  for (const std::string& w : report.warnings) EXPECT_EQ(w.find("Lift doors"), std::string::npos) << w;
+  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) + "/tests/app/player_check.py' '" +
+                          options.output + "' '" + (work / "player").string() + "' --swap-sequence";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 #include <unistd.h>
 
 #include "processing/hotspots/hotspot_geometry.h"
@@ -18,12 +19,16 @@ namespace fs = std::filesystem;
 
 struct Files {
   fs::path dir;
-  std::string good_png, broken_png, broken_mp4, sound;
+  std::string good_png, good_video, broken_png, broken_mp4, sound;
   Files() {
     dir = fs::temp_directory_path() / ("plenopath-hotspot-validation-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     good_png = (dir / "poster.png").string();
     cv::imwrite(good_png, cv::Mat(16, 24, CV_8UC3, cv::Scalar(20, 200, 40)));
+    good_video = (dir / "doors.avi").string();
+    cv::VideoWriter doors(good_video, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0, cv::Size(32, 24));
+    for (int k = 0; k < 5; ++k) doors.write(cv::Mat(24, 32, CV_8UC3, cv::Scalar(40 * k, 80, 200)));
+    doors.release();
     broken_png = (dir / "broken.png").string();
     std::ofstream(broken_png) << "this is not a PNG at all";
     broken_mp4 = (dir / "broken.mp4").string();
@@ -175,6 +180,9 @@ TEST(HotspotValidation, EventActionsNeedUsableTargets) {
   EXPECT_TRUE(has_field(warnings_for("open_url", "javascript:alert(1)"), "action_target"));
   EXPECT_TRUE(warnings_for("swap_image", files().good_png).empty());
   EXPECT_TRUE(has_field(warnings_for("swap_image", files().broken_png), "action_target"));
+  // An image sequence (the lift doors opening) is swapped in as a video; an unreadable one is reported.
+  EXPECT_TRUE(warnings_for("swap_image", files().good_video).empty());
+  EXPECT_TRUE(has_field(warnings_for("swap_image", files().broken_mp4), "action_target"));
   EXPECT_TRUE(warnings_for("play_sound", files().sound).empty());
   EXPECT_TRUE(has_field(warnings_for("play_sound", (files().dir / "none.wav").string()), "action_target"));
   EXPECT_TRUE(has_field(warnings_for("play_video", files().broken_mp4), "action_target"));
