@@ -16,6 +16,18 @@ if(PLENOPATH_SANITIZE)
     add_link_options(-fsanitize=${_s})
   endforeach()
   add_compile_options(-fno-omit-frame-pointer -fno-sanitize-recover=all)
+  # GCC 12 reports false "may be used uninitialized" inside CGAL's headers when the sanitizers' checks are
+  # inlined at -O2 (std::make_pair(Direction_2(), false) in Epic_converter.h); warnings only, not -Werror.
+  target_compile_options(plenopath_warnings INTERFACE -Wno-error=maybe-uninitialized)
+  # CGAL's arrangements static_cast their DCEL records to the Arrangement_2 wrapper types (Face, Halfedge,
+  # ...), which UBSan's dynamic-type check reports in every arrangement iteration: benign and not ours.
+  if("undefined" IN_LIST _sanitizers)
+    add_compile_options(-fno-sanitize=vptr)
+  endif()
+  # Eigen turns its own aligned allocator on under ASan (EIGEN_MALLOC_ALREADY_ALIGNED 0) while Debian's
+  # libceres was built without it: a matrix Ceres allocates and our code frees is then freed at the wrong
+  # address. glibc's and ASan's malloc both align to 16 bytes, so keep Eigen on plain malloc everywhere.
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
 # plenopath_add_library(NAME DIR) globs the folder's sources so new files need no CMake edit.
