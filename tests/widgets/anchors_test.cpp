@@ -37,6 +37,7 @@ using studio::MainWindow;
 using test::test_project;
 
 using Studio = test::TestStudio;
+using test::count_near;
 
 void send_mouse(QWidget* widget, QEvent::Type type, QPoint pixel, Qt::MouseButtons buttons,
                 Qt::KeyboardModifiers modifiers) {
@@ -61,15 +62,6 @@ double metres_per_pixel(widgets::MapView* map) {
 
 bool is_anchor_colour(QRgb c) {  // the markers' and residual lines' magenta (209, 0, 140)
   return qRed(c) > 150 && qGreen(c) < 80 && qBlue(c) > 90 && qBlue(c) < 190;
-}
-
-template <typename Predicate>
-int count_near(const QImage& image, QPoint centre, int radius, Predicate predicate) {
-  int n = 0;
-  for (int y = centre.y() - radius; y <= centre.y() + radius; ++y)
-    for (int x = centre.x() - radius; x <= centre.x() + radius; ++x)
-      if (image.valid(x, y) && predicate(image.pixel(x, y))) ++n;
-  return n;
 }
 
 QAction* action_named(MainWindow& window, const QString& text) {

@@ -52,20 +52,11 @@ using test::test_project;
 using test::wait_until;
 
 using Studio = test::TestStudio;
+using test::count_near;
 
 bool near_colour(QRgb c, int r, int g, int b, int tolerance) {
   return std::abs(qRed(c) - r) <= tolerance && std::abs(qGreen(c) - g) <= tolerance &&
          std::abs(qBlue(c) - b) <= tolerance;
-}
-
-// Pixels within `radius` of `centre` matching a predicate.
-template <typename Predicate>
-int count_near(const QImage& image, QPoint centre, int radius, Predicate predicate) {
-  int n = 0;
-  for (int y = centre.y() - radius; y <= centre.y() + radius; ++y)
-    for (int x = centre.x() - radius; x <= centre.x() + radius; ++x)
-      if (image.valid(x, y) && predicate(image.pixel(x, y))) ++n;
-  return n;
 }
 
 TEST(Studio, MapShowsPlanAndPath) {

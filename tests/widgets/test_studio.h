@@ -1,6 +1,7 @@
 #pragma once
 // The studio's main window for GUI tests: shown at a fixed size and never blocking on a question (crash
 // recovery declined, unsaved changes discarded, error boxes collected in `errors` instead of shown).
+#include <QImage>
 #include <QMessageBox>
 #include <QStringList>
 #include <QTest>
@@ -22,5 +23,15 @@ struct TestStudio {
     EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));
   }
 };
+
+// Pixels of `image` within `radius` of `centre` (a square) that match `predicate`.
+template <typename Predicate>
+int count_near(const QImage& image, QPoint centre, int radius, Predicate predicate) {
+  int n = 0;
+  for (int y = centre.y() - radius; y <= centre.y() + radius; ++y)
+    for (int x = centre.x() - radius; x <= centre.x() + radius; ++x)
+      if (image.valid(x, y) && predicate(image.pixel(x, y))) ++n;
+  return n;
+}
 
 }  // namespace plenopath::test
