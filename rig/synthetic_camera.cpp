@@ -462,20 +462,29 @@ inline cv::Vec3f sample_bilinear(const cv::Mat& img, double x, double y, bool pe
   return out;
 }
 
-// Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel:
-// the level whose texels are about the pixel's footprint.
-inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
-  // Level L has texels 2^L level-0 texels wide; take the first whose texels are at least the footprint, so
-  // the image stays band-limited (no texture aliasing, smooth under resampling and sub-pixel motion).
-  int level = 0;
-  if (footprint > 1.0) {
-    const float f = static_cast<float>(footprint);
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    level = std::min(static_cast<int>((bits >> 23) & 0xff) - 126, static_cast<int>(t.levels.size()) - 1);
-  }
+// Samples a pyramid at level-0 texel coordinates with a footprint of `footprint` level-0 texels per pixel,
+// trilinearly: between the two levels whose texels bracket the footprint, blended by where the footprint
+// lies between them. Picking one level per pixel would switch the texture's blur abruptly wherever the
+// footprint crosses a power of two; as the camera moves that boundary sweeps over surfaces, and a feature
+// tracker sees the corners inside it shift (tracks then drift by tenths of a pixel per frame).
+inline cv::Vec3f sample_level(const TexturePyramid& t, int level, double x, double y, bool periodic) {
+  // Level L's texel j is centred where level 0's texel 2^L j is (pyrDown centres each output texel on an
+  // even input texel), i.e. at level-0 coordinate 2^L j + 0.5; scaling by 2^-L alone would shift the
+  // texture by half a finer texel from one level to the next.
   const double scale = 1.0 / static_cast<double>(1 << level);
-  return sample_bilinear(t.levels[level], x * scale, y * scale, periodic);
+  return sample_bilinear(t.levels[level], (x - 0.5) * scale + 0.5, (y - 0.5) * scale + 0.5, periodic);
+}
+
+inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
+  const int top = static_cast<int>(t.levels.size()) - 1;
+  if (!(footprint > 1.0)) return sample_level(t, 0, x, y, periodic);
+  const double lod = std::log2(footprint);
+  if (lod >= top) return sample_level(t, top, x, y, periodic);
+  const int level = static_cast<int>(lod);
+  const float blend = static_cast<float>(lod - level);
+  const cv::Vec3f fine = sample_level(t, level, x, y, periodic);
+  if (blend < 1.0f / 64) return fine;
+  return fine * (1.0f - blend) + sample_level(t, level + 1, x, y, periodic) * blend;
 }
 
 inline cv::Vec3b to_bgr(const cv::Vec3f& c) {
