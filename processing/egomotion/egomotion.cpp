@@ -438,6 +438,10 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   std::vector<double> kf_steps;
   for (int k = 1; k < kfn; ++k) kf_steps.push_back((refined_kf[k].head<2>() - refined_kf[k - 1].head<2>()).norm());
   const double typical_kf_step = median(kf_steps);  // turns on the spot have none: bounds need a floor
+  // Points the refinement dropped (every observation an outlier) keep their coarse positions: resecting
+  // against them pulls a frame towards the coarse chain.
+  std::vector<char> point_alive(problem.points.size(), 0);
+  for (const auto& o : problem.observations) point_alive[o.point] = 1;
   std::vector<Eigen::Vector3d> pose(n);
   const double inlier_threshold = std::max(4.0 * refinement.loss_scale, 3.0 * pixel_angle);
   for (int f = 0; f < n; ++f) {
@@ -445,6 +449,7 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     std::vector<Eigen::Vector3d> pts, brs;
     for (int t : frame_tracks[f]) {
       if (point_of_track[t] < 0) continue;
+      if (!point_alive[point_of_track[t]]) continue;
       pts.push_back(problem.points[point_of_track[t]]);
       brs.push_back(bearing(t, f));
     }

@@ -17,6 +17,13 @@ double median_of(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
 }
+// How far a warp's linear part is from the identity: the largest relative change of a length or an angle.
+double deformation(const cv::Matx22d& a) {
+  const double e = 0.5 * (a(0, 0) + a(1, 1)), f = 0.5 * (a(0, 0) - a(1, 1));
+  const double g = 0.5 * (a(1, 0) + a(0, 1)), k = 0.5 * (a(1, 0) - a(0, 1));
+  const double q = std::hypot(e, k), r = std::hypot(f, g);
+  return std::max({std::abs(q + r - 1.0), std::abs(std::abs(q - r) - 1.0), std::abs(std::atan2(k, e))});
+}
 }  // namespace
 
 std::string KltOptions::check() const {
@@ -30,6 +37,9 @@ std::string KltOptions::check() const {
   if (pyramid_levels < 0 || pyramid_levels > 6) o << "pyramid_levels must be in [0, 6]; ";
   if (!(min_parallax_flow_px >= 0)) o << "min_parallax_flow_px must be >= 0; ";
   if (max_track_frames < 0 || max_track_frames == 1) o << "max_track_frames must be 0 or >= 2; ";
+  if (affine_refinement && !affine.check().empty()) o << "affine: " << affine.check();
+  if (!(max_affine_correction_px > 0)) o << "max_affine_correction_px must be > 0; ";
+  if (!(affine_refresh_deformation > 0)) o << "affine_refresh_deformation must be > 0; ";
   if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90)) o << "max_abs_elevation_deg must be in (10, 90]; ";
   return o.str();
 }
@@ -84,6 +94,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
   cv::buildOpticalFlowPyramid(padded, pyramid, window, options_.pyramid_levels, true);
 
   FrameTrackStats stats;
+  const bool affine = options_.affine_refinement;
+  std::vector<LivePatch> still_patches;
   const double max_elev = options_.max_abs_elevation_deg * M_PI / 180.0;
   const double y_min = (M_PI / 2 - max_elev) / M_PI * height_, y_max = height_ - y_min;
   std::vector<int> still_live;
@@ -134,8 +146,42 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
         ++stats.lost;
         continue;
       }
-      float x = to[k].x - pad_;
-      const float y = to[k].y - pad_;
+      cv::Point2d at(to[k].x, to[k].y);  // padded coordinates
+      bool refined = true;
+      cv::Matx22d linear = cv::Matx22d::eye();
+      if (affine) {
+        AffineWarp warp;
+        warp.centre = at;
+        warp.linear = live_patches_[k].linear;
+        refined = align_affine_patch(live_patches_[k].patch, padded, &warp, options_.affine) &&
+                  std::hypot(warp.centre.x - at.x, warp.centre.y - at.y) <= options_.max_affine_correction_px;
+        if (refined) {
+          at = warp.centre;
+          linear = warp.linear;
+        } else {
+          ++affine_failures_;
+        }
+      }
+      if (!refined) {
+        // Lucas-Kanade's step into this frame is all there is, and it is the biased kind: the track ends at
+        // the previous frame, and a new one starts here (sharing no observation with it).
+        LivePatch fresh;
+        fresh.patch = make_affine_patch(padded, at, options_.affine);
+        ++stats.lost;
+        if (!fresh.patch.valid) continue;
+        float fx = std::fmod(static_cast<float>(at.x) - pad_, static_cast<float>(width_));
+        if (fx < 0) fx += width_;
+        if (fx >= width_) fx -= width_;
+        FeatureTrack t;
+        t.observations.push_back({frame_index, fx, static_cast<float>(at.y) - pad_});
+        tracks_.push_back(std::move(t));
+        moved_frames_.push_back(0);
+        still_live.push_back(static_cast<int>(tracks_.size()) - 1);
+        still_patches.push_back(std::move(fresh));
+        continue;
+      }
+      float x = static_cast<float>(at.x) - pad_;
+      const float y = static_cast<float>(at.y) - pad_;
       x = std::fmod(x, static_cast<float>(width_));
       if (x < 0) x += width_;
       if (x >= width_) x -= width_;
@@ -151,23 +197,45 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
                         static_cast<int>((static_cast<std::uint64_t>(live_[k]) * 2654435761u) %
                                          static_cast<std::uint64_t>(options_.max_track_frames / 2 + 1));
       if (options_.max_track_frames > 0 && age >= limit) {
-        // Continue as a new point from here (see KltOptions::max_track_frames). The new track starts one
-        // frame back: its first pair of frames is then measured by the same track.
+        // Continue as a new point from here (see KltOptions::max_track_frames), with a new patch when
+        // refining. The new track starts one frame back: its first pair of frames is then measured by the
+        // same track.
+        LivePatch next_patch;
+        if (affine) {
+          next_patch.patch = make_affine_patch(padded, at, options_.affine);
+          if (!next_patch.patch.valid) {
+            ++stats.lost;
+            continue;
+          }
+        }
         FeatureTrack next;
         next.observations.push_back(track.observations.back());
         next.observations.push_back({frame_index, x, y});
         tracks_.push_back(std::move(next));
         moved_frames_.push_back(1);
         still_live.push_back(static_cast<int>(tracks_.size()) - 1);
+        if (affine) still_patches.push_back(std::move(next_patch));
       } else {
         track.observations.push_back({frame_index, x, y});
         still_live.push_back(live_[k]);
+        if (affine) {
+          still_patches.push_back(std::move(live_patches_[k]));
+          still_patches.back().linear = linear;
+          // Deformed this much, the patch as first seen is a poor template: cut a new one here (the point
+          // stays the same; its observations so far and from now on are each aligned, not chained).
+          if (deformation(linear) > options_.affine_refresh_deformation) {
+            LivePatch fresh;
+            fresh.patch = make_affine_patch(padded, at, options_.affine);
+            if (fresh.patch.valid) still_patches.back() = std::move(fresh);
+          }
+        }
       }
     }
     stats.tracked = static_cast<int>(still_live.size());
     stats.median_flow_px = median_of(flow);
   }
   live_ = still_live;
+  live_patches_ = std::move(still_patches);
 
   if (static_cast<int>(live_.size()) < options_.min_features) {
     cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
@@ -185,6 +253,12 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.02));
     }
     for (const cv::Point2f& c : corners) {
+      if (affine) {
+        LivePatch lp;
+        lp.patch = make_affine_patch(padded, cv::Point2d(c.x + pad_, c.y + pad_), options_.affine);
+        if (!lp.patch.valid) continue;  // too little structure to refine: not worth a track
+        live_patches_.push_back(std::move(lp));
+      }
       FeatureTrack t;
       t.observations.push_back({frame_index, c.x, c.y});
       tracks_.push_back(std::move(t));

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "processing/egomotion/affine_patch.h"
+
 namespace plenopath {
 
 struct KltOptions {
@@ -21,15 +23,26 @@ struct KltOptions {
   int pyramid_levels = 3;
   double max_abs_elevation_deg = 72.0;  // corners nearer the poles are not used (stretched, few)
   double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
-  // A track longer than this many frames is cut and continued as a new track (a new 3-D point): frame-to-
-  // frame KLT drifts (the equirect distortion around a feature changes as the camera moves), and a short
-  // track keeps that drift below the refinement's noise. Each track is cut after between half and all of
-  // this many frames of camera motion (staggered, so tracks born together do not end together; a turn on
-  // the spot does not count); the continuation shares the cut track's last observation. 0 = never cut.
-  int max_track_frames = 24;
+  // A track longer than this many frames is cut and continued as a new track (a new 3-D point): what drift
+  // is left after the affine refinement (a few hundredths of a pixel at each template refresh) stays below
+  // the refinement's noise. Each track is cut after between half and all of this many frames of camera
+  // motion (staggered, so tracks born together do not end together; a turn on the spot does not count); the
+  // continuation shares the cut track's last observation. 0 = never cut. On the 400-frame office walk
+  // (1024 wide): 24 -> heading RMS 0.056 deg, ATE 0.015 %; 48 -> 0.035 deg, 0.010 %; never -> 0.059 deg.
+  int max_track_frames = 48;
   // Frames count towards max_track_frames only when the camera moved: the median flow left after removing
   // the median sideways flow (a turn) exceeds this (working pixels).
   double min_parallax_flow_px = 0.15;
+  // Each observation after the first is refined by aligning the feature's first patch under an affine warp
+  // (affine_patch.h): translation-only Lucas-Kanade slides about 0.1 px per frame as the patch deforms.
+  // A refinement that fails, or moves the point farther than max_affine_correction_px from where
+  // Lucas-Kanade put it, ends the track (a new one starts there). A patch deformed by more than
+  // affine_refresh_deformation (relative change of a length, or rotation in radians) is cut anew where it
+  // was aligned: floor points passing the camera shrink to half their width within a few frames.
+  bool affine_refinement = true;
+  AffinePatchOptions affine;
+  double max_affine_correction_px = 1.5;
+  double affine_refresh_deformation = 0.15;
   std::string check() const;      // empty when valid
 };
 
@@ -63,6 +76,7 @@ class KltTracker {
   int width() const { return width_; }
   int height() const { return height_; }
   Eigen::Vector3d bearing(const TrackObservation& o) const;
+  int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
 
  private:
   cv::Mat prepare(const cv::Mat& frame);
@@ -72,6 +86,12 @@ class KltTracker {
   std::vector<FeatureTrack> tracks_;
   std::vector<int> live_;  // indices of tracks observed in the last frame
   std::vector<int> moved_frames_;  // per track: frames since its start in which the camera moved
+  struct LivePatch {
+    AffinePatch patch;            // as the track first saw it
+    cv::Matx22d linear = cv::Matx22d::eye();  // its deformation up to the last frame
+  };
+  std::vector<LivePatch> live_patches_;  // parallel to live_ (when affine_refinement)
+  int affine_failures_ = 0;
   std::vector<cv::Mat> previous_pyramid_;
 };
 
