@@ -74,6 +74,14 @@ double normalise(float* v, const std::vector<float>& w) {
 
 }  // namespace
 
+LinearStretch linear_stretch(const cv::Matx22d& a) {
+  // a = rotation(q part) + reflection-like (r part); the singular values are q + r and |q - r|.
+  const double e = 0.5 * (a(0, 0) + a(1, 1)), f = 0.5 * (a(0, 0) - a(1, 1));
+  const double g = 0.5 * (a(1, 0) + a(0, 1)), k = 0.5 * (a(1, 0) - a(0, 1));
+  const double q = std::hypot(e, k), r = std::hypot(f, g);
+  return {std::abs(q - r), q + r, std::atan2(k, e)};
+}
+
 std::string AffinePatchOptions::check() const {
   std::ostringstream o;
   if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
@@ -169,13 +177,8 @@ bool align_affine_patch(const AffinePatch& patch, const cv::Mat& image, AffineWa
     if (last_move < options.converged_px) break;
   }
   if (last_move > 30 * options.converged_px) return false;  // still moving: no stable match
-  const cv::Matx22d& a = warp->linear;
-  // Singular values of the linear part, in closed form.
-  const double e = 0.5 * (a(0, 0) + a(1, 1)), f = 0.5 * (a(0, 0) - a(1, 1));
-  const double g = 0.5 * (a(1, 0) + a(0, 1)), k = 0.5 * (a(1, 0) - a(0, 1));
-  const double q = std::hypot(e, k), r = std::hypot(f, g);
-  const double s_max = q + r, s_min = std::abs(q - r);
-  if (s_min < options.min_scale || s_max > options.max_scale) return false;
+  const LinearStretch stretch = linear_stretch(warp->linear);
+  if (stretch.smallest < options.min_scale || stretch.largest > options.max_scale) return false;
   if (!sample_warped(image, *warp, n, sampled.data()) || normalise(sampled.data(), w) < 1.0) return false;
   double sw = 0, se = 0;
   for (int j = 0; j < n * n; ++j) {

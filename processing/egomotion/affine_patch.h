@@ -42,6 +42,12 @@ struct AffineWarp {
   cv::Matx22d linear = cv::Matx22d::eye();
 };
 
+// The singular values of a 2x2 linear map (how much it stretches at most and at least), and its rotation.
+struct LinearStretch {
+  double smallest = 1.0, largest = 1.0, rotation = 0.0;  // rotation in radians
+};
+LinearStretch linear_stretch(const cv::Matx22d& a);
+
 // image: CV_8U; centre in OpenCV pixel coordinates (pixel centres on integers). The window plus a one-pixel
 // margin must lie inside the image.
 AffinePatch make_affine_patch(const cv::Mat& image, cv::Point2d centre, const AffinePatchOptions& options);

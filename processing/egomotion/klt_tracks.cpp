@@ -17,12 +17,10 @@ double median_of(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
 }
-// How far a warp's linear part is from the identity: the largest relative change of a length or an angle.
+// How far a warp's linear part is from the identity: the largest relative change of a length, or the rotation.
 double deformation(const cv::Matx22d& a) {
-  const double e = 0.5 * (a(0, 0) + a(1, 1)), f = 0.5 * (a(0, 0) - a(1, 1));
-  const double g = 0.5 * (a(1, 0) + a(0, 1)), k = 0.5 * (a(1, 0) - a(0, 1));
-  const double q = std::hypot(e, k), r = std::hypot(f, g);
-  return std::max({std::abs(q + r - 1.0), std::abs(std::abs(q - r) - 1.0), std::abs(std::atan2(k, e))});
+  const LinearStretch s = linear_stretch(a);
+  return std::max({std::abs(s.largest - 1.0), std::abs(s.smallest - 1.0), std::abs(s.rotation)});
 }
 }  // namespace
 
