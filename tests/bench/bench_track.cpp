@@ -10,6 +10,7 @@
 // run; --walk: the long run turns back after N frames of the walk)
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -151,7 +152,7 @@ nlohmann::json run(const RunSpec& spec) {
       std::cerr << i << " truth " << truth.frames[i].x << " " << truth.frames[i].y << " "
                 << degrees(truth.frames[i].heading) << " ring " << degrees(r.ring_headings[i]) << " est "
                 << r.path.frames[i].x << " " << r.path.frames[i].y << " " << degrees(r.path.frames[i].heading)
-                << " flags " << r.path.frames[i].flags << " " << r.path.frames[i].reason << "\n";
+                << " kf " << std::count(r.keyframes.begin(), r.keyframes.end(), int(i)) << " flags " << r.path.frames[i].flags << " " << r.path.frames[i].reason << "\n";
   }
   CameraPath coarse = r.path;
   for (size_t i = 0; i < coarse.frames.size(); ++i) {
