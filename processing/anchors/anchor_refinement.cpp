@@ -268,7 +268,9 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain: banded, sparse
   solver.max_num_iterations = options.max_iterations;
-  solver.num_threads = 2;
+  // One thread: with more, Ceres sums in whatever order its threads finish and the last bits differ from
+  // run to run, and `plenopath refine` would not repeat itself.
+  solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;
   ProgressCallback callback(progress);
   solver.callbacks.push_back(&callback);

@@ -193,3 +193,84 @@ TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
 
 }  // namespace
 }  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// The truth sampled `factor` times finer: positions and headings interpolated between its frames.
+CameraPath finer(const CameraPath& truth, int factor) {
+  CameraPath out;
+  for (std::size_t i = 0; i + 1 < truth.frames.size(); ++i)
+    for (int k = 0; k < factor; ++k) {
+      const double w = double(k) / factor;
+      PathFrame f = truth.frames[i];
+      f.index = static_cast<int>(out.frames.size());
+      f.x = (1 - w) * truth.frames[i].x + w * truth.frames[i + 1].x;
+      f.y = (1 - w) * truth.frames[i].y + w * truth.frames[i + 1].y;
+      f.heading = truth.frames[i].heading + w * std::remainder(truth.frames[i + 1].heading - truth.frames[i].heading, 2 * M_PI);
+      out.frames.push_back(f);
+    }
+  return out;
+}
+
+// A tracker's drift that the model does not capture exactly: a heading bias that swings along the path
+// (radians per metre) and a scale error; and its noise, white per frame (2 mm, 0.03 deg).
+CameraPath drifted_per_metre(const CameraPath& truth, double scale) {
+  CameraPath out = truth;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> position_noise(0.0, 0.002), heading_noise(0.0, 0.0005);
+  Eigen::Vector2d p = truth.frames.front().position();
+  double extra = 0.0, travelled = 0.0;
+  for (std::size_t i = 0; i < truth.frames.size(); ++i) {
+    if (i > 0) {
+      const Eigen::Vector2d step = truth.frames[i].position() - truth.frames[i - 1].position();
+      travelled += step.norm();
+      extra += step.norm() * 0.02 * std::sin(travelled / 4.0);
+      const double c = std::cos(extra), s = std::sin(extra);
+      p += scale * Eigen::Vector2d(c * step.x() - s * step.y(), s * step.x() + c * step.y());
+    }
+    out.frames[i].x = p.x() + position_noise(rng);
+    out.frames[i].y = p.y() + position_noise(rng);
+    out.frames[i].heading = wrap_angle(truth.frames[i].heading + extra + heading_noise(rng));
+  }
+  return out;
+}
+
+// The same walk tracked at 8 cm or at 8 mm per frame, with the same drift per metre, the same white noise
+// per frame and anchors at the same places, comes out alike. (Measured: 0.065 and 0.053 m. A model with
+// sigmas per metre travelled instead of per step was tried and did no better here: 0.072 and 0.069 m.)
+TEST(AnchorRefinement, SamplingRateDoesNotChangeTheCorrection) {
+  const CameraPath coarse_truth = truth_walk(400);
+  const CameraPath fine_truth = finer(coarse_truth, 10);
+  double ate[2] = {0, 0}, before[2] = {0, 0};
+  for (int fine = 0; fine < 2; ++fine) {
+    const CameraPath& truth = fine ? fine_truth : coarse_truth;
+    const CameraPath drift = drifted_per_metre(truth, 1.04);
+    const std::size_t n = truth.frames.size();
+    const Anchors anchors = anchors_at(truth, {0, n / 3, 2 * n / 3, n - 1});
+    const CameraPath refined = refine_path_with_anchors(drift, anchors);
+    double sum = 0, sum_before = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      sum += (refined.frames[i].position() - truth.frames[i].position()).squaredNorm();
+      sum_before += (drift.frames[i].position() - truth.frames[i].position()).squaredNorm();
+    }
+    ate[fine] = std::sqrt(sum / n);
+    before[fine] = std::sqrt(sum_before / n);
+  }
+  std::printf("same drift per metre: unaligned RMS %.3f -> %.3f m at 8 cm steps, %.3f -> %.3f m at 8 mm\n", before[0],
+              ate[0], before[1], ate[1]);
+  EXPECT_LT(ate[0], before[0] / 3);
+  EXPECT_LT(ate[1], before[1] / 3);
+  EXPECT_LT(std::max(ate[0], ate[1]) / std::min(ate[0], ate[1]), 1.5);
+}
+
+TEST(AnchorRefinement, SameInputGivesTheSameResultBitForBit) {
+  const CameraPath truth = truth_walk(900);
+  const CameraPath drift = drifted_per_metre(truth, 1.04);
+  const Anchors anchors = anchors_at(truth, {0, 450, 899});
+  const CameraPath first = refine_path_with_anchors(drift, anchors);
+  for (int run = 0; run < 3; ++run) EXPECT_EQ(refine_path_with_anchors(drift, anchors), first) << "run " << run;
+}
+
+}  // namespace
+}  // namespace plenopath
