@@ -67,6 +67,7 @@ Command add_track_command(CLI::App& parent) {
     std::string out;
     bool json = false;
     bool quiet = false;
+    bool no_loop_closure = false;
     int work_width = 1024;
     int first = 0;
     int last = -1;
@@ -95,6 +96,8 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
   sub->add_option("--work-width", options->work_width, "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
+  sub->add_flag("--no-loop-closure", options->no_loop_closure,
+                "Do not tie places the walk comes back to (e.g. rooms that look alike)");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
   sub->add_flag("--quiet", options->quiet, "No progress on stderr");
   return {sub, [options]() {
@@ -121,6 +124,7 @@ Command add_track_command(CLI::App& parent) {
             EgomotionOptions eo;
             eo.camera_height_m = options->camera_height;
             eo.klt.work_width = options->work_width;
+            eo.loop.enabled = !options->no_loop_closure;
             if (options->known_distance.size() == 3) {
               // Capture positions to positions among the tracked frames.
               auto tracked = [&](double frame) {
@@ -177,6 +181,8 @@ Command add_track_command(CLI::App& parent) {
                 {"length", r.path.length()},
                 {"scale_source", r.scale_source},
                 {"flagged_frames", r.flagged_frames},
+                {"loop_closures", r.loop_closures},
+                {"loop_frames", r.loop_frames},
                 {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
                 {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
                 {"anchors", anchors.size()},
@@ -188,7 +194,8 @@ Command add_track_command(CLI::App& parent) {
               std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
                         << r.points << " points), path length " << std::fixed << std::setprecision(2)
                         << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
-                        << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged\n";
+                        << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged, "
+                        << r.loop_closures << " loop closures\n";
               if (!anchors.empty())
                 std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
                           << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -84,7 +85,8 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
 
 std::string EgomotionOptions::check() const {
   std::ostringstream o;
-  const std::string r = ring.check(), k = klt.check(), f = refinement.check();
+  const std::string r = ring.check(), k = klt.check(), f = refinement.check(), l = loop.check();
+  if (!l.empty()) o << "loop: " << l;
   if (!r.empty()) o << "ring: " << r;
   if (!k.empty()) o << "klt: " << k;
   if (!f.empty()) o << "refinement: " << f;
@@ -114,6 +116,7 @@ struct EgomotionTracker::State {
   std::vector<FrameTrackStats> stats;
   std::vector<int> live_after;  // live tracks after each frame (texture measure)
   std::vector<double> window;   // ring column weights
+  std::vector<FrameDescriptors> described;  // for loop closure
   double seconds_frames = 0.0;
 };
 
@@ -156,6 +159,15 @@ void EgomotionTracker::add_frame(const cv::Mat& bgr) {
   }
   const FrameTrackStats st = s.klt.add_frame(gray, predicted_shift);
   s.stats.push_back(st);
+  const int index = static_cast<int>(s.rings.size()) - 1;
+  if (s.options.loop.enabled && index % s.options.loop.descriptor_stride == 0) {
+    std::vector<cv::Point2f> positions;
+    for (int t : s.klt.live_tracks()) {
+      const TrackObservation& o = s.klt.tracks()[static_cast<std::size_t>(t)].observations.back();
+      positions.emplace_back(o.x, o.y);
+    }
+    s.described.push_back(describe_frame(gray, index, s.klt.live_tracks(), positions));
+  }
   s.live_after.push_back(st.tracked + st.detected);
   s.seconds_frames += seconds_since(t0);
 }
@@ -430,8 +442,69 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   result.points = static_cast<int>(problem.points.size());
   result.observations = static_cast<int>(problem.observations.size());
   if (!report("refinement", 0.0)) return finish_cancelled();
-  result.refinement = refine_bundle(problem, refinement, [&](double f) { return report("refinement", f); });
-  if (result.refinement.cancelled || cancelled) return finish_cancelled();
+  // Windows first; then the places the walk came back to are tied together, and one global pass removes
+  // the drift in between.
+  RefinementOptions windowed = refinement, global = refinement;
+  windowed.global_max_iterations = 0;
+  global.window_keyframes = 0;
+  const RefinementReport windows =
+      refine_bundle(problem, windowed, [&](double f) { return report("refinement", 0.5 * f); });
+  if (windows.cancelled || cancelled) return finish_cancelled();
+  {
+    std::vector<double> kf_travelled(kfn, 0.0);
+    for (int k = 1; k < kfn; ++k)
+      kf_travelled[k] = kf_travelled[k - 1] + (problem.poses[k].head<2>() - problem.poses[k - 1].head<2>()).norm();
+    std::vector<double> steps;
+    for (int k = 1; k < kfn; ++k) steps.push_back(kf_travelled[k] - kf_travelled[k - 1]);
+    const std::vector<Eigen::Vector3d> kf_now = problem.poses;
+    const std::vector<LoopMatch> loops = find_loop_closures(
+        s.described, [&](int f) { return interpolate(kf_now, f); },
+        [&](int f) {
+          const int k1 = static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
+          if (k1 >= kfn) return kf_travelled.back();
+          const int k0 = k1 - 1;
+          const double w = double(f - keyframes[k0]) / (keyframes[k1] - keyframes[k0]);
+          return (1 - w) * kf_travelled[k0] + w * kf_travelled[k1];
+        },
+        bearing, median(steps), two_view, opt.loop, rng);
+    // Union-find over the problem's points: each verified pair makes the later visit's point the earlier's.
+    std::vector<int> parent(problem.points.size());
+    for (std::size_t q = 0; q < parent.size(); ++q) parent[q] = static_cast<int>(q);
+    std::function<int(int)> root = [&](int q) { return parent[q] == q ? q : parent[q] = root(parent[q]); };
+    for (const LoopMatch& m : loops)
+      for (const auto& [ta, tb] : m.track_pairs) {
+        const int pa = point_of_track[ta], pb = point_of_track[tb];
+        if (pa < 0 || pb < 0) continue;
+        const int ra = root(pa), rb = root(pb);
+        if (ra == rb) continue;
+        parent[std::max(ra, rb)] = std::min(ra, rb);
+        ++result.merged_points;
+      }
+    result.loop_closures = static_cast<int>(loops.size());
+    for (const LoopMatch& m : loops) result.loop_frames.emplace_back(m.frame_a, m.frame_b);
+    if (result.merged_points > 0) {
+      for (BundleObservation& o : problem.observations) o.point = root(o.point);
+      // A keyframe that saw both visits' points now sees one point twice: keep one observation.
+      std::sort(problem.observations.begin(), problem.observations.end(),
+                [](const BundleObservation& a, const BundleObservation& b) {
+                  return a.point != b.point ? a.point < b.point : a.pose < b.pose;
+                });
+      problem.observations.erase(std::unique(problem.observations.begin(), problem.observations.end(),
+                                             [](const BundleObservation& a, const BundleObservation& b) {
+                                               return a.point == b.point && a.pose == b.pose;
+                                             }),
+                                 problem.observations.end());
+      for (int& q : point_of_track)
+        if (q >= 0) q = root(q);
+    }
+  }
+  const RefinementReport global_report =
+      refine_bundle(problem, global, [&](double f) { return report("refinement", 0.5 + 0.5 * f); });
+  if (global_report.cancelled || cancelled) return finish_cancelled();
+  result.refinement = global_report;
+  result.refinement.initial_rms = windows.initial_rms;
+  result.refinement.windows = windows.windows;
+  result.refinement.iterations += windows.iterations;
   const std::vector<Eigen::Vector3d> refined_kf = problem.poses;
 
   // ---- every frame against the refined points

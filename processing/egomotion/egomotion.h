@@ -8,7 +8,8 @@
 //   2. keyframes ("chunks": cut when the scene has moved enough or the heading has turned), the direction
 //      of each step by planar two-view RANSAC on bearings, its length by bearing-only resection against the
 //      points triangulated so far, chained into (x, y);
-//   3. Ceres refinement of keyframe poses and points (path_refinement.h), then every other frame resected
+//   3. Ceres refinement of keyframe poses and points (path_refinement.h): windows, then loop closures
+//      (loop_closure.h) tie revisited places together, then one global pass; every other frame is resected
 //      against the refined points;
 //   4. metric scale from the camera height (floor points lie at -h) or a known distance, else relative;
 //   5. frames that cannot be trusted are flagged with a reason (model/camera_path.h FrameFlag).
@@ -17,10 +18,12 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/camera_path.h"
 #include "processing/egomotion/klt_tracks.h"
+#include "processing/egomotion/loop_closure.h"
 #include "processing/egomotion/path_refinement.h"
 #include "processing/egomotion/planar_two_view.h"
 #include "processing/egomotion/ring_heading.h"
@@ -32,6 +35,7 @@ struct EgomotionOptions {
   KltOptions klt;
   PlanarTwoViewOptions two_view;
   RefinementOptions refinement;
+  LoopClosureOptions loop;              // between the windowed and the global refinement
   double keyframe_parallax_deg = 2.0;   // median rotation-free parallax since the last keyframe that makes one
   double keyframe_max_turn_deg = 8.0;   // heading change since the last keyframe that cuts a chunk
   double keyframe_min_shared = 0.5;     // fraction of the last keyframe's tracks still seen; below it, cut
@@ -66,6 +70,9 @@ struct EgomotionResult {
   int points = 0;
   int observations = 0;
   RefinementReport refinement;
+  int loop_closures = 0;               // places recognised as revisited (frame pairs)
+  std::vector<std::pair<int, int>> loop_frames;  // those pairs: (earlier frame, later frame)
+  int merged_points = 0;               // points tied to an earlier visit's by them
   std::string scale_source;            // "camera_height", "distance", or "relative"
   double scale_factor = 1.0;           // metres per internal unit applied at the end
   int floor_points = 0;                // points used for the camera-height scale

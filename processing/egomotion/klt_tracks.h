@@ -76,6 +76,7 @@ class KltTracker {
   int width() const { return width_; }
   int height() const { return height_; }
   Eigen::Vector3d bearing(const TrackObservation& o) const;
+  const std::vector<int>& live_tracks() const { return live_; }  // tracks observed in the last frame
   int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
 
  private:

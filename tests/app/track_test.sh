@@ -51,9 +51,12 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 p = json.load(open(sys.argv[2]))
 assert s["frames"] == 3, s
+assert s["loop_closures"] == 0 and s["loop_frames"] == [], s  # three frames: nowhere to come back to
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
 PY
+"$cli" track --capture "$tmp/cap" --no-loop-closure --out "$tmp/noloop.json" --quiet > /dev/null 2> "$tmp/err.txt" \
+  || fail "track --no-loop-closure exit $?: $(cat "$tmp/err.txt")"
 # A range and a stride: indices stay positions in the whole capture (natural order).
 "$cli" track --capture "$tmp/cap" --first 1 --last 2 --out "$tmp/range.json" --quiet > /dev/null 2> "$tmp/err.txt" \
   || fail "track --first 1 --last 2 exit $?: $(cat "$tmp/err.txt")"

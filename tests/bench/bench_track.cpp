@@ -6,8 +6,8 @@
 // Runs: 1024x512 clean, 1024x512 with noise + people, 2048x1024 clean, and a long run (10 000 frames of
 // 1024x512 rendered on the fly through FrameSource::from_generator: the walk there and back, with turns on
 // the spot) that checks time and memory scale. PLENOPATH_BENCH_QUICK=1 leaves out the 2048 and long runs.
-// Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--only]  (--only: just that one
-// run; --walk: the long run turns back after N frames of the walk)
+// Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--no-loop] [--only]  (--only: just
+// that one run; --walk: the long run turns back after N frames of the walk; --no-loop: without loop closure)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -37,6 +37,7 @@ struct RunSpec {
   bool noise = false;
   bool long_walk = false;  // frames rendered on the fly (not kept), the walk repeated there and back
   int walk_frames = 0;     // long runs: frames of the walk before turning back (0 = the whole walk)
+  bool loop_closure = true;
 };
 
 double peak_rss_mb() {
@@ -104,6 +105,7 @@ nlohmann::json run(const RunSpec& spec) {
   }
   EgomotionOptions options;
   options.camera_height_m = scene_options.camera_height;
+  options.loop.enabled = spec.loop_closure;
   double render_s = 0, decode_s = 0;
   auto seconds = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -191,6 +193,9 @@ nlohmann::json run(const RunSpec& spec) {
           {"scale_error_signed_pct", 100.0 * (1.0 / e.scale - 1.0)},  // > 0: the estimate is too large
           {"refinement_rms_deg", {degrees(r.refinement.initial_rms), degrees(r.refinement.final_rms)}},
           {"refinement_iterations", r.refinement.iterations},
+          {"loop_closure", spec.loop_closure},
+          {"loop_closures", r.loop_closures},
+          {"merged_points", r.merged_points},
           {"flagged_frames", r.flagged_frames},
           {"seconds_frames_stage", r.seconds_per_frame_stage},
           {"seconds_geometry", r.seconds_geometry},
@@ -213,6 +218,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--long")) spec.long_walk = true;
     else if (!std::strcmp(argv[i], "--walk") && i + 1 < argc) spec.walk_frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only")) only = true;
+    else if (!std::strcmp(argv[i], "--no-loop")) spec.loop_closure = false;
   }
   nlohmann::json out;
   out["benchmark"] = "track";

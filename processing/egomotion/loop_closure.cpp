@@ -1,0 +1,144 @@
+#include "processing/egomotion/loop_closure.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <opencv2/features2d.hpp>
+#include <sstream>
+
+namespace plenopath {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+double azimuth(const Eigen::Vector3d& b) { return std::atan2(b.y(), b.x()); }
+
+// Mutual nearest neighbours that also pass the ratio test: (row in a, row in b).
+std::vector<std::pair<int, int>> match_descriptors(const cv::Mat& a, const cv::Mat& b, double ratio) {
+  std::vector<std::pair<int, int>> out;
+  if (a.rows < 2 || b.rows < 2) return out;
+  cv::BFMatcher matcher(cv::NORM_HAMMING);
+  std::vector<std::vector<cv::DMatch>> ab, ba;
+  matcher.knnMatch(a, b, ab, 2);
+  matcher.knnMatch(b, a, ba, 2);
+  std::vector<int> best_in_a(b.rows, -1);
+  for (const auto& m : ba)
+    if (m.size() == 2 && m[0].distance < ratio * m[1].distance) best_in_a[m[0].queryIdx] = m[0].trainIdx;
+  for (const auto& m : ab)
+    if (m.size() == 2 && m[0].distance < ratio * m[1].distance && best_in_a[m[0].trainIdx] == m[0].queryIdx)
+      out.emplace_back(m[0].queryIdx, m[0].trainIdx);
+  return out;
+}
+
+}  // namespace
+
+std::string LoopClosureOptions::check() const {
+  std::ostringstream o;
+  if (descriptor_stride < 1) o << "descriptor_stride must be >= 1; ";
+  if (!(max_distance_steps > 0)) o << "max_distance_steps must be > 0; ";
+  if (!(min_travel_steps > max_distance_steps)) o << "min_travel_steps must exceed max_distance_steps; ";
+  if (!(max_turn_disagreement_deg > 0)) o << "max_turn_disagreement_deg must be > 0; ";
+  if (min_inliers < 8) o << "min_inliers must be >= 8; ";
+  if (!(ratio > 0 && ratio <= 1)) o << "ratio must be in (0, 1]; ";
+  if (spacing_frames < 0) o << "spacing_frames must be >= 0; ";
+  return o.str();
+}
+
+FrameDescriptors describe_frame(const cv::Mat& gray, int frame, const std::vector<int>& tracks,
+                                const std::vector<cv::Point2f>& positions) {
+  FrameDescriptors out;
+  out.frame = frame;
+  std::vector<cv::KeyPoint> keypoints;
+  keypoints.reserve(tracks.size());
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    keypoints.emplace_back(positions[k], 31.f, 0.f, 0.f, 0, static_cast<int>(k));  // upright: turns are shifts
+  // One pyramid level: the tracks' corners are at the working image's scale.
+  thread_local cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 1, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, 20);
+  orb->compute(gray, keypoints, out.descriptors);  // drops keypoints too near the border
+  for (const cv::KeyPoint& k : keypoints) out.tracks.push_back(tracks[static_cast<std::size_t>(k.class_id)]);
+  return out;
+}
+
+std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& described,
+                                          const std::function<Eigen::Vector3d(int)>& pose,
+                                          const std::function<double(int)>& travelled,
+                                          const std::function<Eigen::Vector3d(int, int)>& bearing,
+                                          double typical_step, const PlanarTwoViewOptions& two_view,
+                                          const LoopClosureOptions& options, std::mt19937& rng) {
+  std::vector<LoopMatch> out;
+  if (!options.enabled || !(typical_step > 0) || described.size() < 2) return out;
+  const double max_distance = options.max_distance_steps * typical_step;
+  const double min_travel = options.min_travel_steps * typical_step;
+  const double max_turn_error = options.max_turn_disagreement_deg * M_PI / 180.0;
+  std::vector<Eigen::Vector3d> poses;
+  std::vector<double> along;
+  for (const FrameDescriptors& d : described) {
+    poses.push_back(pose(d.frame));
+    along.push_back(travelled(d.frame));
+  }
+  int next_allowed = 0;
+  for (std::size_t b = 1; b < described.size(); ++b) {
+    if (described[b].frame < next_allowed || described[b].descriptors.empty()) continue;
+    // The nearest earlier place, far enough back along the path.
+    int best = -1;
+    double best_distance = max_distance;
+    for (std::size_t a = 0; a < b; ++a) {
+      if (along[b] - along[a] < min_travel) break;  // `along` grows: the rest are nearer along the path
+      const double d = (poses[a].head<2>() - poses[b].head<2>()).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = static_cast<int>(a);
+      }
+    }
+    if (best < 0) continue;
+    const FrameDescriptors& fa = described[static_cast<std::size_t>(best)];
+    const FrameDescriptors& fb = described[b];
+    const std::vector<std::pair<int, int>> matches = match_descriptors(fa.descriptors, fb.descriptors, options.ratio);
+    if (static_cast<int>(matches.size()) < options.min_inliers) continue;
+    std::vector<Eigen::Vector3d> ba, bb;
+    std::vector<double> azimuth_change;
+    for (const auto& [ia, ib] : matches) {
+      ba.push_back(bearing(fa.tracks[static_cast<std::size_t>(ia)], fa.frame));
+      bb.push_back(bearing(fb.tracks[static_cast<std::size_t>(ib)], fb.frame));
+      azimuth_change.push_back(std::remainder(azimuth(ba.back()) - azimuth(bb.back()), 2 * M_PI));
+    }
+    const double turn_guess = std::remainder(poses[b].z() - poses[static_cast<std::size_t>(best)].z(), 2 * M_PI);
+    PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
+    std::vector<bool> inlier = rel.inlier;
+    double turn = rel.turn;
+    if (!rel.valid) {
+      // Back on the very spot: no parallax to verify a direction with, but a pure turn must explain the
+      // matches (each bearing rotated by the median azimuth change lands on its match).
+      turn = median(azimuth_change);
+      inlier.assign(ba.size(), false);
+      int count = 0;
+      for (std::size_t k = 0; k < ba.size(); ++k) {
+        const double c = std::cos(-turn), s = std::sin(-turn);
+        const Eigen::Vector3d r(c * ba[k].x() - s * ba[k].y(), s * ba[k].x() + c * ba[k].y(), ba[k].z());
+        inlier[k] = std::atan2(r.cross(bb[k]).norm(), r.dot(bb[k])) < 3 * two_view.threshold;
+        count += inlier[k];
+      }
+      if (count < options.min_inliers || count < static_cast<int>(ba.size()) / 2) continue;
+    } else if (rel.inliers < options.min_inliers) {
+      continue;
+    }
+    if (std::abs(std::remainder(turn - turn_guess, 2 * M_PI)) > max_turn_error) continue;
+    LoopMatch m;
+    m.frame_a = fa.frame;
+    m.frame_b = fb.frame;
+    m.turn = turn;
+    for (std::size_t k = 0; k < matches.size(); ++k)
+      if (inlier[k])
+        m.track_pairs.emplace_back(fa.tracks[static_cast<std::size_t>(matches[k].first)],
+                                   fb.tracks[static_cast<std::size_t>(matches[k].second)]);
+    out.push_back(std::move(m));
+    next_allowed = fb.frame + options.spacing_frames;
+  }
+  return out;
+}
+
+}  // namespace plenopath

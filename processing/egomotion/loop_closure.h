@@ -1,0 +1,63 @@
+#pragma once
+// Loop closure: where the walk comes back to a place it has been, the points seen then and now are tied
+// together, so that the global refinement removes the drift accumulated in between (a tracker alone keeps
+// it: on a 10 000-frame walk there and back, heading wandered 0.12 deg RMS).
+//
+// While frames stream in, every few frames the live KLT features get ORB descriptors (at the tracks'
+// positions: no second detector). After the windowed refinement, frames whose estimated positions lie close
+// together but far apart along the path are candidates; their descriptors are matched (mutual nearest
+// neighbours, Lowe's ratio), and the matches are verified by planar two-view geometry with the estimated
+// turn. The verified track pairs are returned; the caller merges their points.
+#include <Eigen/Core>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "processing/egomotion/planar_two_view.h"
+
+namespace plenopath {
+
+struct LoopClosureOptions {
+  bool enabled = true;
+  int descriptor_stride = 3;           // describe every this many frames
+  // Candidates: estimated positions within max_distance_steps typical keyframe steps of each other, at least
+  // min_travel_steps steps apart along the path (so the two are not simply neighbours).
+  double max_distance_steps = 8.0;
+  double min_travel_steps = 100.0;
+  double max_turn_disagreement_deg = 6.0;  // the verified turn may differ this much from the estimated one
+  int min_inliers = 40;                // verified matches needed to accept a pair
+  double ratio = 0.8;                  // Lowe's ratio test on Hamming distances
+  int spacing_frames = 24;             // after an accepted pair, the next candidate frame is this much later
+  std::string check() const;           // empty when valid
+};
+
+struct FrameDescriptors {
+  int frame = 0;
+  std::vector<int> tracks;  // the track of each descriptor row
+  cv::Mat descriptors;      // CV_8U, ORB
+};
+
+// gray: the working image (CV_8U); positions of the given tracks in it (OpenCV pixel coordinates).
+FrameDescriptors describe_frame(const cv::Mat& gray, int frame, const std::vector<int>& tracks,
+                                const std::vector<cv::Point2f>& positions);
+
+struct LoopMatch {
+  int frame_a = 0, frame_b = 0;                  // frame_a < frame_b
+  std::vector<std::pair<int, int>> track_pairs;  // (track seen at frame_a, track seen at frame_b), verified
+  double turn = 0.0;                             // verified heading of b minus a, radians
+};
+
+// pose(frame): estimated (x, y, heading); travelled(frame): estimated path length up to it; bearing(track,
+// frame): the track's unit bearing in that frame (camera frame). typical_step: the median keyframe step in
+// the same units as the poses.
+std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& described,
+                                          const std::function<Eigen::Vector3d(int)>& pose,
+                                          const std::function<double(int)>& travelled,
+                                          const std::function<Eigen::Vector3d(int, int)>& bearing,
+                                          double typical_step, const PlanarTwoViewOptions& two_view,
+                                          const LoopClosureOptions& options, std::mt19937& rng);
+
+}  // namespace plenopath
