@@ -55,7 +55,8 @@ FrameDescriptors describe_frame(const cv::Mat& gray, int frame, const std::vecto
   std::vector<cv::KeyPoint> keypoints;
   keypoints.reserve(tracks.size());
   for (std::size_t k = 0; k < tracks.size(); ++k)
-    keypoints.emplace_back(positions[k], 31.f, 0.f, 0.f, 0, static_cast<int>(k));  // upright: turns are shifts
+    keypoints.emplace_back(positions[k], 31.f, 0.f, 0.f, 0,
+                           static_cast<int>(k));  // upright: turns are shifts
   // One pyramid level: the tracks' corners are at the working image's scale.
   thread_local cv::Ptr<cv::ORB> orb = cv::ORB::create(1000, 1.2f, 1, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, 20);
   orb->compute(gray, keypoints, out.descriptors);  // drops keypoints too near the border
@@ -97,7 +98,8 @@ std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& d
     if (best < 0) continue;
     const FrameDescriptors& fa = described[static_cast<std::size_t>(best)];
     const FrameDescriptors& fb = described[b];
-    const std::vector<std::pair<int, int>> matches = match_descriptors(fa.descriptors, fb.descriptors, options.ratio);
+    const std::vector<std::pair<int, int>> matches =
+        match_descriptors(fa.descriptors, fb.descriptors, options.ratio);
     if (static_cast<int>(matches.size()) < options.min_inliers) continue;
     std::vector<Eigen::Vector3d> ba, bb;
     std::vector<double> azimuth_change;
@@ -106,7 +108,8 @@ std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& d
       bb.push_back(bearing(fb.tracks[static_cast<std::size_t>(ib)], fb.frame));
       azimuth_change.push_back(std::remainder(azimuth(ba.back()) - azimuth(bb.back()), 2 * M_PI));
     }
-    const double turn_guess = std::remainder(poses[b].z() - poses[static_cast<std::size_t>(best)].z(), 2 * M_PI);
+    const double turn_guess =
+        std::remainder(poses[b].z() - poses[static_cast<std::size_t>(best)].z(), 2 * M_PI);
     PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
     std::vector<bool> inlier = rel.inlier;
     double turn = rel.turn;

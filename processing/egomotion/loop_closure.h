@@ -22,16 +22,16 @@ namespace plenopath {
 
 struct LoopClosureOptions {
   bool enabled = true;
-  int descriptor_stride = 3;           // describe every this many frames
+  int descriptor_stride = 3;  // describe every this many frames
   // Candidates: estimated positions within max_distance_steps typical keyframe steps of each other, at least
   // min_travel_steps steps apart along the path (so the two are not simply neighbours).
   double max_distance_steps = 8.0;
   double min_travel_steps = 100.0;
   double max_turn_disagreement_deg = 6.0;  // the verified turn may differ this much from the estimated one
-  int min_inliers = 40;                // verified matches needed to accept a pair
-  double ratio = 0.8;                  // Lowe's ratio test on Hamming distances
-  int spacing_frames = 24;             // after an accepted pair, the next candidate frame is this much later
-  std::string check() const;           // empty when valid
+  int min_inliers = 40;                    // verified matches needed to accept a pair
+  double ratio = 0.8;                      // Lowe's ratio test on Hamming distances
+  int spacing_frames = 24;    // after an accepted pair, the next candidate frame is this much later
+  std::string check() const;  // empty when valid
 };
 
 struct FrameDescriptors {

@@ -136,11 +136,13 @@ TEST(AffinePatch, LinearStretchByHand) {
   EXPECT_NEAR(d.smallest, 0.5, 1e-12);
   EXPECT_NEAR(d.rotation, 0.0, 1e-12);
   const double a = 30 * M_PI / 180;
-  const LinearStretch r = linear_stretch(1.1 * cv::Matx22d(std::cos(a), -std::sin(a), std::sin(a), std::cos(a)));
+  const LinearStretch r =
+      linear_stretch(1.1 * cv::Matx22d(std::cos(a), -std::sin(a), std::sin(a), std::cos(a)));
   EXPECT_NEAR(r.largest, 1.1, 1e-12);
   EXPECT_NEAR(r.smallest, 1.1, 1e-12);
   EXPECT_NEAR(r.rotation, a, 1e-12);
-  const LinearStretch shear = linear_stretch(cv::Matx22d(1.0, 1.0, 0.0, 1.0));  // singular values golden ratio
+  const LinearStretch shear =
+      linear_stretch(cv::Matx22d(1.0, 1.0, 0.0, 1.0));  // singular values golden ratio
   EXPECT_NEAR(shear.largest, (1 + std::sqrt(5.0)) / 2, 1e-12);
   EXPECT_NEAR(shear.smallest, (std::sqrt(5.0) - 1) / 2, 1e-12);
 }

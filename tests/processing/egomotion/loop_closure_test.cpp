@@ -51,7 +51,8 @@ TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
     EgomotionOptions options;
     options.camera_height_m = 1.6;
     options.loop.enabled = loop == 1;
-    results[loop] = EgomotionTracker::run(static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
+    results[loop] = EgomotionTracker::run(
+        static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
   }
   const EgomotionResult& r = results[1];
   EXPECT_EQ(results[0].loop_closures, 0);
@@ -80,8 +81,9 @@ TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
     const PathErrors e = evaluate_path(p, truth);
     EXPECT_LT(e.ate_pct, 0.2) << "loop closure " << loop;
   }
-  std::printf("loop closures %d, points merged %d; worst outbound/return twin mismatch %.4f m without, %.4f m with\n",
-              r.loop_closures, r.merged_points, worst[0], worst[1]);
+  std::printf(
+      "loop closures %d, points merged %d; worst outbound/return twin mismatch %.4f m without, %.4f m with\n",
+      r.loop_closures, r.merged_points, worst[0], worst[1]);
   EXPECT_LE(worst[1], worst[0] * 1.05 + 1e-3);
 }
 
