@@ -243,6 +243,11 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   // hundredths of a degree: the median azimuth change (exact for a turn on the spot), refined by planar
   // two-view geometry when the frames moved enough. Frames without enough tracks keep the ring's turn.
   std::vector<double> heading(n, 0.0);
+  // Per frame: the share of the tracks continued from the previous frame that move against the static
+  // scene (off the epipolar geometry of the step, or of a pure turn when the step has no parallax); -1 when
+  // the step could not be solved. Tracks on people walking by, a passing door or the operator: the
+  // refinement rejects them, but a frame where they are many is worth flagging.
+  std::vector<double> moving_share(n, -1.0);
   {
     PlanarTwoViewOptions step_options = two_view;
     step_options.turn_scan_deg = 0;
@@ -266,7 +271,21 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       if (static_cast<int>(azimuth_change.size()) >= two_view.min_inliers) {
         turn = median(azimuth_change);
         const PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn, step_options, rng);
-        if (rel.valid && std::abs(rel.turn - turn) < max_disagreement) turn = rel.turn;
+        const bool solved = rel.valid && std::abs(rel.turn - turn) < max_disagreement;
+        if (solved) turn = rel.turn;
+        if (solved || rel.median_parallax < two_view.min_parallax) {
+          int moving = 0, total = 0;
+          for (int t : frame_tracks[f]) {
+            if (!observation(t, f - 1)) continue;
+            const Eigen::Vector3d a = bearing(t, f - 1), b = bearing(t, f);
+            const Eigen::Vector3d turned = rotate_z(a, -turn);
+            const double error = solved ? std::abs(planar_epipolar_error(a, b, rel.turn, rel.direction))
+                                        : std::atan2(turned.cross(b).norm(), turned.dot(b));
+            moving += error > 3.0 * two_view.threshold;
+            ++total;
+          }
+          moving_share[f] = double(moving) / total;
+        }
       }
       heading[f] = heading[f - 1] + turn;
     }
@@ -549,15 +568,12 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     } else {
       add_flag(frames[f], kFrameBridged, "bridged: too few tracked points to place the frame");
     }
-    if (!pts.empty()) {
-      int outliers = 0;
-      for (size_t k = 0; k < pts.size(); ++k) outliers += ray_error(pose[f], pts[k], brs[k]) > inlier_threshold;
-      const double share = double(outliers) / pts.size();
-      if (share > opt.moving_outlier_fraction && pts.size() >= 10)
+    if (moving_share[f] >= 0) {
+      if (moving_share[f] > opt.moving_outlier_fraction)
         add_flag(frames[f], kFrameMovingObjects,
-                 "moving objects: " + std::to_string(int(std::round(100 * share))) +
-                     "% of tracks disagree with the static scene");
-      frames[f].confidence = 1.0 - share;
+                 "moving objects: " + std::to_string(int(std::round(100 * moving_share[f]))) +
+                     "% of tracks move against the static scene");
+      frames[f].confidence = 1.0 - moving_share[f];
     }
     if (f % 64 == 0 && !report("resection", double(f) / n)) return finish_cancelled();
   }

@@ -56,7 +56,10 @@ struct EgomotionOptions {
   int textureless_corners = 60;         // fewer live corners than this: textureless
   double duplicate_flow_px = 0.08;      // median track motion below this (and no turn): duplicate / stopped
   double jump_factor = 6.0;             // a step this many times the local median step: jump
-  double moving_outlier_fraction = 0.3; // this share of a frame's tracks inconsistent with the scene: moving objects
+  // Above this share of a frame's tracks moving against the static scene (off the step's epipolar geometry):
+  // moving objects. Clean renders stay below 0.003 at the 99th percentile (0.10 at worst, in 7 deg/frame
+  // turns); 25 people walking about the office reach 0.09.
+  double moving_outlier_fraction = 0.15;
   std::uint32_t seed = 1;
   std::string check() const;            // empty when valid
 };
