@@ -38,7 +38,8 @@ bool sample_warped(const cv::Mat& image, const AffineWarp& warp, int n, float* o
   for (int sy : {-h, h})
     for (int sx : {-h, h}) {
       const double x = warp.centre.x + a * sx + b * sy, y = warp.centre.y + c * sx + d * sy;
-      if (!(x >= 0 && y >= 0 && x < image.cols - 1 && y < image.rows - 1)) return false;
+      // A margin: the samples between the corners are stepped to incrementally and may round past them.
+      if (!(x >= 1e-6 && y >= 1e-6 && x < image.cols - 1 - 1e-6 && y < image.rows - 1 - 1e-6)) return false;
     }
   const std::size_t step = image.step[0];
   for (int y = -h; y <= h; ++y) {
