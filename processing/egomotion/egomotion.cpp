@@ -12,6 +12,7 @@
 
 #include "model/error.h"
 #include "processing/egomotion/bearing_cost.h"
+#include "processing/egomotion/median.h"
 
 namespace plenopath {
 namespace {
@@ -21,12 +22,6 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 Eigen::Vector3d rotate_z(const Eigen::Vector3d& v, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 void add_flag(PathFrame& f, FrameFlag flag, const std::string& why) {

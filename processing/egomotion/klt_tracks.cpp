@@ -8,15 +8,11 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "processing/egomotion/median.h"
 #include "rig/spherical.h"
 
 namespace plenopath {
 namespace {
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 // How far a warp's linear part is from the identity: the largest relative change of a length, or the rotation.
 double deformation(const cv::Matx22d& a) {
   const LinearStretch s = linear_stretch(a);
@@ -134,11 +130,11 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
       sideways.push_back(to[k].x - from[k].x);
     }
-    const double turn_flow = median_of(sideways);
+    const double turn_flow = median(sideways);
     std::vector<double> parallax;
     for (size_t k = 0; k < live_.size(); ++k)
       if (continued[k]) parallax.push_back(std::hypot(to[k].x - from[k].x - turn_flow, to[k].y - from[k].y));
-    const bool moved = median_of(parallax) > options_.min_parallax_flow_px;
+    const bool moved = median(parallax) > options_.min_parallax_flow_px;
     for (size_t k = 0; k < live_.size(); ++k) {
       if (!continued[k]) {
         ++stats.lost;
@@ -230,7 +226,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       }
     }
     stats.tracked = static_cast<int>(still_live.size());
-    stats.median_flow_px = median_of(flow);
+    stats.median_flow_px = median(flow);
   }
   live_ = still_live;
   live_patches_ = std::move(still_patches);

@@ -6,14 +6,10 @@
 #include <opencv2/features2d.hpp>
 #include <sstream>
 
+#include "processing/egomotion/median.h"
+
 namespace plenopath {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 double azimuth(const Eigen::Vector3d& b) { return std::atan2(b.y(), b.x()); }
 
