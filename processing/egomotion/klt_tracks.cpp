@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <sstream>
@@ -135,6 +136,23 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
     for (size_t k = 0; k < live_.size(); ++k)
       if (continued[k]) parallax.push_back(std::hypot(to[k].x - from[k].x - turn_flow, to[k].y - from[k].y));
     const bool moved = median(parallax) > options_.min_parallax_flow_px;
+    // The affine refinements, one per continued track, are independent: run them on all cores (each
+    // result depends only on its track, so the outcome does not depend on the thread count).
+    std::vector<AffineWarp> warps(live_.size());
+    std::vector<char> aligned(live_.size(), 0);
+    if (affine) {
+      cv::parallel_for_(cv::Range(0, static_cast<int>(live_.size())), [&](const cv::Range& range) {
+        for (int k = range.start; k < range.end; ++k) {
+          if (!continued[k]) continue;
+          AffineWarp& warp = warps[k];
+          warp.centre = cv::Point2d(to[k].x, to[k].y);
+          warp.linear = live_patches_[k].linear;
+          aligned[k] = align_affine_patch(live_patches_[k].patch, padded, &warp, options_.affine) &&
+                       std::hypot(warp.centre.x - to[k].x, warp.centre.y - to[k].y) <=
+                           options_.max_affine_correction_px;
+        }
+      });
+    }
     for (size_t k = 0; k < live_.size(); ++k) {
       if (!continued[k]) {
         ++stats.lost;
@@ -144,14 +162,10 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       bool refined = true;
       cv::Matx22d linear = cv::Matx22d::eye();
       if (affine) {
-        AffineWarp warp;
-        warp.centre = at;
-        warp.linear = live_patches_[k].linear;
-        refined = align_affine_patch(live_patches_[k].patch, padded, &warp, options_.affine) &&
-                  std::hypot(warp.centre.x - at.x, warp.centre.y - at.y) <= options_.max_affine_correction_px;
+        refined = aligned[k];
         if (refined) {
-          at = warp.centre;
-          linear = warp.linear;
+          at = warps[k].centre;
+          linear = warps[k].linear;
         } else {
           ++affine_failures_;
         }
