@@ -81,6 +81,22 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
       painter.drawLine(QPointF(x0, y), QPointF(x1, y));
     }
   }
+  // Frames the tracker flagged (bridged, moving objects, stopped, ...): amber marks along the top, one run
+  // of consecutive flagged frames as one bar.
+  if (p.path.size() == static_cast<std::size_t>(n)) {
+    const QColor amber(240, 150, 0);
+    for (int i = 0; i < n;) {
+      if (p.path.frames[static_cast<std::size_t>(i)].flags == kFrameOk) {
+        ++i;
+        continue;
+      }
+      int j = i;
+      while (j + 1 < n && p.path.frames[static_cast<std::size_t>(j + 1)].flags != kFrameOk) ++j;
+      const double x0 = x_of(i) - 1.0, x1 = std::max(x_of(j) + 1.0, x0 + 3.0);
+      painter.fillRect(QRectF(x0, r.top(), x1 - x0, 5), amber);
+      i = j + 1;
+    }
+  }
   // Per-frame curves, each scaled to its maximum.
   QVector<QPair<QString, QColor>> legend;
   auto plot = [&](const QVector<double>& series, const QColor& colour, const QString& name, const QString& unit) {
@@ -192,6 +208,8 @@ void TimelinePanel::set_playing(bool playing) {
 
 bool TimelinePanel::playing() const { return play_timer_->isActive(); }
 
+QString TimelinePanel::info_text() const { return info_->text(); }
+
 void TimelinePanel::update_controls() {
   const int n = document_.frame_count();
   const int position = document_.current_position();
@@ -208,7 +226,21 @@ void TimelinePanel::update_controls() {
     text += tr(" · %1 m of %2 m").arg(s[position], 0, 'f', 1).arg(s.back(), 0, 'f', 1);
   }
   text += tr(" · %1 keyframes").arg(p.keyframes.indices.size());
+  int flagged = 0;
+  for (const PathFrame& f : p.path.frames) flagged += f.flags != kFrameOk;
+  if (flagged > 0) text += tr(" · %1 flagged").arg(flagged);
+  QString reason;
+  if (position >= 0 && position < static_cast<int>(p.path.size())) {
+    const PathFrame& f = p.path.frames[static_cast<std::size_t>(position)];
+    if (f.flags != kFrameOk)
+      reason = f.reason.empty() ? tr("flagged by the tracker") : QString::fromStdString(f.reason);
+  }
+  if (!reason.isEmpty()) text += tr(" · this frame: %1").arg(reason);
   info_->setText(text);
+  info_->setToolTip(reason.isEmpty() ? QString()
+                                     : tr("The tracker flagged this frame: %1. Its pose may be interpolated or "
+                                          "less certain; an anchor (Ctrl+drag on the map) can pin it.")
+                                           .arg(reason));
 }
 
 }  // namespace plenopath::widgets

@@ -1,6 +1,7 @@
 #pragma once
-// The timeline: a frame scrubber with keyframe ticks, the visibility cells as coloured bands and a plot of
-// the envelope area along the path; a play button that plays at the capture's frame rate.
+// The timeline: a frame scrubber with keyframe ticks, the visibility cells as coloured bands, a plot of
+// the envelope area along the path and amber marks over the frames the tracker flagged (the line above
+// says why for the current one); a play button that plays at the capture's frame rate.
 #include <QVector>
 #include <QWidget>
 
@@ -45,6 +46,7 @@ class TimelinePanel : public QWidget {
   void set_playing(bool playing);
   bool playing() const;
   TimelineStrip* strip() const { return strip_; }
+  QString info_text() const;  // the line beside the frame box (for tests)
 
  private:
   void update_controls();

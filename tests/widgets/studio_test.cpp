@@ -140,6 +140,36 @@ TEST(Studio, TimelineProfileHoldsTheEnvelopeAreaAlongThePath) {
   EXPECT_TRUE(s.window.profiles()->profiles().depth_volume.isEmpty()) << "the test capture has no depth";
 }
 
+TEST(Studio, TimelineMarksFlaggedFramesAndSaysWhy) {
+  // Frames 10..14 flagged as the tracker would flag them: amber marks over them at the top of the strip,
+  // none elsewhere; the line above counts them and gives the current frame's reason.
+  const auto& t = test_project("flags");
+  Project project = t.project;
+  for (int i = 10; i <= 14; ++i) {
+    project.path.frames[i].flags = kFrameBridged;
+    project.path.frames[i].reason = "bridged: too few tracked points to place the frame";
+  }
+  const QString file = t.folder + "/flagged.plenopath";
+  save_project(project, file.toStdString());
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(file));
+  widgets::TimelinePanel* timeline = s.window.timeline_panel();
+  s.window.document().set_current_position(12);
+  QApplication::processEvents();
+  EXPECT_TRUE(timeline->info_text().contains("5 flagged")) << timeline->info_text().toStdString();
+  EXPECT_TRUE(timeline->info_text().contains("too few tracked points")) << timeline->info_text().toStdString();
+  s.window.document().set_current_position(25);
+  QApplication::processEvents();
+  EXPECT_TRUE(timeline->info_text().contains("5 flagged"));
+  EXPECT_FALSE(timeline->info_text().contains("this frame")) << timeline->info_text().toStdString();
+  widgets::TimelineStrip* strip = timeline->strip();
+  const QImage image = strip->grab().toImage().convertToFormat(QImage::Format_RGB32);
+  auto is_amber = [](QRgb c) { return near_colour(c, 240, 150, 0, 12); };
+  EXPECT_GT(count_near(image, QPoint(static_cast<int>(strip->x_of(12)), 8), 2, is_amber), 5);
+  EXPECT_EQ(count_near(image, QPoint(static_cast<int>(strip->x_of(3)), 8), 2, is_amber), 0);
+  EXPECT_EQ(count_near(image, QPoint(static_cast<int>(strip->x_of(22)), 8), 2, is_amber), 0);
+}
+
 TEST(Studio, ClickOnThePathGoesThere) {
   const auto& t = test_project();
   Studio s;
