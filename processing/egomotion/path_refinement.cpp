@@ -67,11 +67,11 @@ double rms(const std::vector<double>& e) {
   return e.empty() ? 0.0 : std::sqrt(s / e.size());
 }
 
-// Solves with poses [first, last] free except those in [first, held_end) and pose 0 held.
-// Returns false when cancelled.
+// Solves with poses [first, last] free except those in [first, held_end), those from held_from on, and pose
+// 0, which are held. Returns false when cancelled.
 bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, int last, int held_end,
                  int max_iterations, const RefinementProgress& progress, double begin, double end,
-                 RefinementReport* report) {
+                 RefinementReport* report, int held_from = std::numeric_limits<int>::max()) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
@@ -93,7 +93,7 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   bool any_free = false;
   for (int i = first; i <= last; ++i) {
     if (!pose_used[i]) continue;
-    if (i < held_end || i == 0) {
+    if (i < held_end || i == 0 || i >= held_from) {
       problem.SetParameterBlockConstant(p.poses[i].data());
     } else {
       any_free = true;
@@ -103,6 +103,7 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   // farthest one.
   int held = 0;
   for (int i = first; i < std::min(held_end, last + 1); ++i) held += pose_used[i];
+  for (int i = std::max(first, std::min(held_from, last + 1)); i <= last; ++i) held += pose_used[i];
   if (first == 0 && !pose_used[0]) held = 0;
   if (held < 2) {
     int anchor = first;
@@ -159,6 +160,29 @@ void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, 
       move(&p.points[q].x(), &p.points[q].y());
 }
 
+// At most about `limit` observations: each point keeps its first and last and evenly spaced ones between
+// (at least three), so that every point still ties together the stretch of path that saw it.
+std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& observations, std::size_t points,
+                                       std::size_t limit) {
+  std::vector<std::vector<int>> by_point(points);
+  for (std::size_t k = 0; k < observations.size(); ++k) by_point[observations[k].point].push_back(static_cast<int>(k));
+  std::size_t seen = 0;
+  for (const auto& v : by_point) seen += !v.empty();
+  const std::size_t keep = std::max<std::size_t>(3, seen > 0 ? limit / seen : 3);
+  std::vector<BundleObservation> out;
+  out.reserve(std::min(observations.size(), keep * seen));
+  for (auto& v : by_point) {
+    std::sort(v.begin(), v.end(), [&](int a, int b) { return observations[a].pose < observations[b].pose; });
+    if (v.size() <= keep) {
+      for (int k : v) out.push_back(observations[k]);
+      continue;
+    }
+    for (std::size_t j = 0; j < keep; ++j)
+      out.push_back(observations[v[static_cast<std::size_t>(std::lround(double(j) * (v.size() - 1) / (keep - 1)))]]);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string RefinementOptions::check() const {
@@ -170,6 +194,7 @@ std::string RefinementOptions::check() const {
   if (window_max_iterations < 0 || global_max_iterations < 0) o << "iteration limits must be >= 0; ";
   if (threads < 1) o << "threads must be >= 1; ";
   if (outlier_threshold < 0) o << "outlier_threshold must be >= 0; ";
+  if (global_max_observations < 0) o << "global_max_observations must be >= 0 (0 = no limit); ";
   return o.str();
 }
 
@@ -226,10 +251,23 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       carry_along(problem, first_pose_of_point, last, last_before, problem.poses[last]);
     }
   }
+  // The global pass, on a thinned set of observations when there are too many (the full set is kept and
+  // put back after each solve).
+  const std::size_t limit = static_cast<std::size_t>(options.global_max_observations);
+  bool thinned_any = false;
+  auto solve_global = [&](int max_iterations, double begin, double end) {
+    if (limit == 0 || problem.observations.size() <= limit)
+      return solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+    thinned_any = true;
+    std::vector<BundleObservation> all = thinned(problem.observations, problem.points.size(), limit);
+    std::swap(all, problem.observations);
+    const bool ok = solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+    std::swap(all, problem.observations);
+    return ok;
+  };
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
-    if (!solve_range(problem, options, 0, n - 1, 1, options.global_max_iterations, progress, windowed_share, split,
-                     &report)) {
+    if (!solve_global(options.global_max_iterations, windowed_share, split)) {
       report.cancelled = true;
     } else if (options.outlier_threshold > 0) {
       const std::vector<double> errors = observation_errors(problem);
@@ -258,9 +296,22 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       }
       report.outliers_removed = static_cast<int>(problem.observations.size() - kept.size());
       problem.observations = std::move(kept);
-      if (!solve_range(problem, options, 0, n - 1, 1, std::max(1, options.global_max_iterations / 2), progress,
-                       split, 1.0, &report)) {
-        report.cancelled = true;
+      if (!solve_global(std::max(1, options.global_max_iterations / 2), split, 1.0)) report.cancelled = true;
+    }
+    // A thinned global pass fixed the path's shape; windows against every observation, each holding its
+    // first and last poses (so the shape stays), restore the detail the thinning left out.
+    if (thinned_any && !report.cancelled) {
+      const int size = options.window_keyframes > 0 ? options.window_keyframes : 80;
+      const int overlap = std::min(options.window_overlap, size / 4);
+      for (int first = 0; first + overlap < n; first += size - 2 * overlap) {
+        const int last = std::min(n - 1, first + size - 1);
+        const int held_from = last == n - 1 ? n : last - overlap + 1;
+        if (!solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
+                         options.window_max_iterations, progress, 1.0, 1.0, &report, held_from)) {
+          report.cancelled = true;
+          break;
+        }
+        if (last == n - 1) break;
       }
     }
   }

@@ -28,6 +28,10 @@ struct RefinementOptions {
   int window_overlap = 20;         // keyframes shared by consecutive windows (held in the later one)
   int window_max_iterations = 15;
   int global_max_iterations = 20;  // 0 = skip the global pass (the windowed pass has done most of the work)
+  // Memory: Ceres keeps about a kilobyte per observation. Above this many, the global pass sees each point
+  // through a few of its observations (first, last, evenly between), and windows with both ends held then
+  // refine every pose against all observations (0 = always all). 10 000 frames make about 2.3 million.
+  int global_max_observations = 600000;
   // After the global pass, observations farther off than this (radians) are dropped and the global pass is
   // repeated (0 = keep all).
   double outlier_threshold = 0.012;

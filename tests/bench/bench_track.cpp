@@ -6,8 +6,9 @@
 // Runs: 1024x512 clean, 1024x512 with noise + people, 2048x1024 clean, and a long run (10 000 frames of
 // 1024x512 rendered on the fly through FrameSource::from_generator: the walk there and back, with turns on
 // the spot) that checks time and memory scale. PLENOPATH_BENCH_QUICK=1 leaves out the 2048 and long runs.
-// Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--no-loop] [--only]  (--only: just
-// that one run; --walk: the long run turns back after N frames of the walk; --no-loop: without loop closure)
+// Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--no-loop] [--global-limit N]
+// [--only]  (--only: just that one run; --walk: the long run turns back after N frames of the walk; --no-loop:
+// without loop closure; --global-limit: RefinementOptions::global_max_observations, 0 = no thinning)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -38,6 +39,7 @@ struct RunSpec {
   bool long_walk = false;  // frames rendered on the fly (not kept), the walk repeated there and back
   int walk_frames = 0;     // long runs: frames of the walk before turning back (0 = the whole walk)
   bool loop_closure = true;
+  int global_limit = -1;  // RefinementOptions::global_max_observations (-1 = the default)
 };
 
 double peak_rss_mb() {
@@ -106,6 +108,7 @@ nlohmann::json run(const RunSpec& spec) {
   EgomotionOptions options;
   options.camera_height_m = scene_options.camera_height;
   options.loop.enabled = spec.loop_closure;
+  if (spec.global_limit >= 0) options.refinement.global_max_observations = spec.global_limit;
   double render_s = 0, decode_s = 0;
   auto seconds = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -194,6 +197,7 @@ nlohmann::json run(const RunSpec& spec) {
           {"refinement_rms_deg", {degrees(r.refinement.initial_rms), degrees(r.refinement.final_rms)}},
           {"refinement_iterations", r.refinement.iterations},
           {"loop_closure", spec.loop_closure},
+          {"global_max_observations", options.refinement.global_max_observations},
           {"loop_closures", r.loop_closures},
           {"merged_points", r.merged_points},
           {"flagged_frames", r.flagged_frames},
@@ -219,6 +223,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--walk") && i + 1 < argc) spec.walk_frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only")) only = true;
     else if (!std::strcmp(argv[i], "--no-loop")) spec.loop_closure = false;
+    else if (!std::strcmp(argv[i], "--global-limit") && i + 1 < argc) spec.global_limit = std::atoi(argv[++i]);
   }
   nlohmann::json out;
   out["benchmark"] = "track";
