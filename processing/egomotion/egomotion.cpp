@@ -76,6 +76,42 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
   return inliers;
 }
 
+// Merges the points of each verified loop pair (union-find; the earlier visit's point stays), rewrites the
+// observations and the track-to-point map, and drops a keyframe's second observation of one merged point.
+// Returns how many points were merged away.
+int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem, std::vector<int>* point_of_track) {
+  std::vector<int> parent(problem->points.size());
+  for (std::size_t q = 0; q < parent.size(); ++q) parent[q] = static_cast<int>(q);
+  auto root = [&](int q) {
+    while (parent[q] != q) q = parent[q] = parent[parent[q]];
+    return q;
+  };
+  int merged = 0;
+  for (const LoopMatch& m : loops)
+    for (const auto& [ta, tb] : m.track_pairs) {
+      const int pa = (*point_of_track)[ta], pb = (*point_of_track)[tb];
+      if (pa < 0 || pb < 0) continue;
+      const int ra = root(pa), rb = root(pb);
+      if (ra == rb) continue;
+      parent[std::max(ra, rb)] = std::min(ra, rb);
+      ++merged;
+    }
+  if (merged == 0) return 0;
+  std::vector<BundleObservation>& obs = problem->observations;
+  for (BundleObservation& o : obs) o.point = root(o.point);
+  std::sort(obs.begin(), obs.end(), [](const BundleObservation& a, const BundleObservation& b) {
+    return a.point != b.point ? a.point < b.point : a.pose < b.pose;
+  });
+  obs.erase(std::unique(obs.begin(), obs.end(),
+                        [](const BundleObservation& a, const BundleObservation& b) {
+                          return a.point == b.point && a.pose == b.pose;
+                        }),
+            obs.end());
+  for (int& q : *point_of_track)
+    if (q >= 0) q = root(q);
+  return merged;
+}
+
 }  // namespace
 
 std::string EgomotionOptions::check() const {
@@ -481,36 +517,9 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
           return (1 - w) * kf_travelled[k0] + w * kf_travelled[k1];
         },
         bearing, median(steps), two_view, opt.loop, rng);
-    // Union-find over the problem's points: each verified pair makes the later visit's point the earlier's.
-    std::vector<int> parent(problem.points.size());
-    for (std::size_t q = 0; q < parent.size(); ++q) parent[q] = static_cast<int>(q);
-    std::function<int(int)> root = [&](int q) { return parent[q] == q ? q : parent[q] = root(parent[q]); };
-    for (const LoopMatch& m : loops)
-      for (const auto& [ta, tb] : m.track_pairs) {
-        const int pa = point_of_track[ta], pb = point_of_track[tb];
-        if (pa < 0 || pb < 0) continue;
-        const int ra = root(pa), rb = root(pb);
-        if (ra == rb) continue;
-        parent[std::max(ra, rb)] = std::min(ra, rb);
-        ++result.merged_points;
-      }
+    result.merged_points = merge_loop_points(loops, &problem, &point_of_track);
     result.loop_closures = static_cast<int>(loops.size());
     for (const LoopMatch& m : loops) result.loop_frames.emplace_back(m.frame_a, m.frame_b);
-    if (result.merged_points > 0) {
-      for (BundleObservation& o : problem.observations) o.point = root(o.point);
-      // A keyframe that saw both visits' points now sees one point twice: keep one observation.
-      std::sort(problem.observations.begin(), problem.observations.end(),
-                [](const BundleObservation& a, const BundleObservation& b) {
-                  return a.point != b.point ? a.point < b.point : a.pose < b.pose;
-                });
-      problem.observations.erase(std::unique(problem.observations.begin(), problem.observations.end(),
-                                             [](const BundleObservation& a, const BundleObservation& b) {
-                                               return a.point == b.point && a.pose == b.pose;
-                                             }),
-                                 problem.observations.end());
-      for (int& q : point_of_track)
-        if (q >= 0) q = root(q);
-    }
   }
   const RefinementReport global_report =
       refine_bundle(problem, global, [&](double f) { return report("refinement", 0.5 + 0.5 * f); });
