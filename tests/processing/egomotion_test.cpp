@@ -118,6 +118,24 @@ struct Walk {
   CameraPath truth;
   std::vector<cv::Mat> frames;
 };
+// Renders `truth` frame by frame as the tracker asks (512 x 256 unless `render` says otherwise) and tracks it
+// with the camera-height scale (1.6 m, the scene's).
+EgomotionResult track_rendered(const SyntheticScene& scene, const CameraPath& truth, const RenderOptions& render) {
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  return EgomotionTracker::run(
+      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
+      options);
+}
+
+RenderOptions small_render() {
+  RenderOptions render;
+  render.width = 512;
+  render.height = 256;
+  render.depth = false;
+  return render;
+}
+
 const Walk& short_walk() {
   static const Walk walk = [] {
     Walk w;
@@ -126,10 +144,7 @@ const Walk& short_walk() {
     AutoWalkOptions walk_options;
     walk_options.max_frames = 60;
     w.truth = auto_walk(plan, walk_options);
-    RenderOptions render;
-    render.width = 512;
-    render.height = 256;
-    render.depth = false;
+    const RenderOptions render = small_render();
     for (const PathFrame& f : w.truth.frames) w.frames.push_back(render_panorama(scene, f, render).rgb);
     return w;
   }();
@@ -206,18 +221,11 @@ TEST(Egomotion, NoiseAndMovingPeopleStayWithinTwoPercent) {
   AutoWalkOptions walk_options;
   walk_options.max_frames = 60;
   const CameraPath truth = auto_walk(plan, walk_options);
-  RenderOptions render;
-  render.width = 512;
-  render.height = 256;
-  render.depth = false;
+  RenderOptions render = small_render();
   render.noise_sigma = 3.0;
   render.exposure_drift = 0.1;
   render.people = 8;
-  EgomotionOptions options;
-  options.camera_height_m = 1.6;
-  const EgomotionResult r = EgomotionTracker::run(
-      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
-      options);
+  const EgomotionResult r = track_rendered(scene, truth, render);
   ASSERT_EQ(r.path.size(), truth.size());
   for (const PathFrame& f : r.path.frames) ASSERT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.heading));
   const PathErrors e = evaluate_path(r.path, truth);
@@ -246,15 +254,7 @@ TEST(Egomotion, TurnOnTheSpotKeepsOneScale) {
     truth.frames.push_back(f);
   }
   for (size_t i = 0; i < truth.size(); ++i) truth.frames[i].index = static_cast<int>(i);
-  RenderOptions render;
-  render.width = 512;
-  render.height = 256;
-  render.depth = false;
-  EgomotionOptions options;
-  options.camera_height_m = 1.6;
-  const EgomotionResult r = EgomotionTracker::run(
-      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
-      options);
+  const EgomotionResult r = track_rendered(scene, truth, small_render());
   ASSERT_EQ(r.path.size(), truth.size());
   const PathErrors e = evaluate_path(r.path, truth);
   EXPECT_LT(e.ate_pct, 1.0);
