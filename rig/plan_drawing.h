@@ -1,7 +1,7 @@
 #pragma once
 // A floor plan as CAD primitives (lines, polylines, circles, arcs, texts, blocks and their inserts), in
 // metres. The sample plan is authored this way so that one description yields both the DXF file the project
-// ships (processing/dxf_export.h) and the FloorPlan tests use without the DXF importer (flatten_drawing).
+// ships (processing/plan/dxf_export.h) and the FloorPlan tests use without the DXF importer (flatten_drawing).
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -15,7 +15,7 @@
 #include <QVBoxLayout>
 #include <exception>
 
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 
 namespace plenopath::widgets {
 

@@ -11,8 +11,8 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
-#include "processing/dxf_export.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_export.h"
+#include "processing/plan/dxf_import.h"
 #include "rig/plan_drawing.h"
 #include "rig/synthetic_camera.h"
 

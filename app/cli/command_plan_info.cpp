@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 
 namespace plenopath::cli {
 

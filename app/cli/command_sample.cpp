@@ -15,7 +15,7 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 #include "processing/frame_source.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"

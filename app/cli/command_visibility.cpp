@@ -10,7 +10,7 @@
 #include "app/cli/command.h"
 #include "model/error.h"
 #include "model/path_io.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 #include "processing/visibility.h"
 
 namespace plenopath::cli {

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "model/error.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath::cli {

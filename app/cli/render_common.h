@@ -9,7 +9,7 @@
 
 namespace plenopath::cli {
 
-// "office-sample" = the built-in sample plan; otherwise a DXF file (processing/dxf_import.h).
+// "office-sample" = the built-in sample plan; otherwise a DXF file (processing/plan/dxf_import.h).
 FloorPlan load_render_plan(const std::string& plan);
 // "2048x1024" -> width, height; throws Error for anything else.
 void parse_size(const std::string& text, int* width, int* height, const std::string& option);

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "model/error.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

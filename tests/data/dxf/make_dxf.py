@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the small DXF files the importer tests read (run from this folder). Hand-made so the expected
-geometry can be computed by hand in tests/processing/dxf_import_test.cpp."""
+geometry can be computed by hand in tests/processing/plan/dxf_import_test.cpp."""
 
 
 def dxf(entities, insunits=None, layers=(), blocks=()):

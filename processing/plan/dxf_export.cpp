@@ -1,4 +1,4 @@
-#include "processing/dxf_export.h"
+#include "processing/plan/dxf_export.h"
 
 #include <dxflib/dl_dxf.h>
 

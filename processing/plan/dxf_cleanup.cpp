@@ -1,4 +1,4 @@
-#include "processing/dxf_cleanup.h"
+#include "processing/plan/dxf_cleanup.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "model/error.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 
 namespace plenopath {
 namespace {

@@ -1,7 +1,7 @@
 // DXF to FloorPlan. Three stages: a structural pre-scan of the group-code pairs (line numbers for errors;
 // binary, truncated and malformed files stop here), dxflib's entity callbacks into per-block primitive
 // lists (in drawing units, OCS mirrored back to WCS), then block expansion, unit conversion and clean-up.
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_import.h"
 
 #include <dxflib/dl_creationadapter.h>
 #include <dxflib/dl_dxf.h>
@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "model/error.h"
-#include "processing/dxf_cleanup.h"
+#include "processing/plan/dxf_cleanup.h"
 
 namespace plenopath {
 

@@ -5,8 +5,8 @@
 #include <map>
 
 #include "model/error.h"
-#include "processing/dxf_export.h"
-#include "processing/dxf_import.h"
+#include "processing/plan/dxf_export.h"
+#include "processing/plan/dxf_import.h"
 #include "rig/plan_drawing.h"
 #include "rig/synthetic_camera.h"
 

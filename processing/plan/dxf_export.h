@@ -1,7 +1,7 @@
 #pragma once
 // Writes plans as ASCII DXF (AutoCAD 2000, via dxflib's writer): layers with colours, LINE, LWPOLYLINE,
 // CIRCLE, ARC, TEXT, and blocks with INSERTs. Coordinates are converted from metres to the chosen units and
-// $INSUNITS says which, so processing/dxf_import.h reads the file back in metres.
+// $INSUNITS says which, so processing/plan/dxf_import.h reads the file back in metres.
 #include <string>
 
 #include "model/floor_plan.h"
