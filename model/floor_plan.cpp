@@ -20,8 +20,8 @@ bool operator==(const PlanLayer& l, const PlanLayer& r) {
          std::tie(r.name, r.color, r.visible, r.occluder, r.entity_count);
 }
 bool operator==(const FloorPlan& l, const FloorPlan& r) {
-  return std::tie(l.source_file, l.units, l.metres_per_unit, l.layers, l.segments, l.outlines, l.labels) ==
-         std::tie(r.source_file, r.units, r.metres_per_unit, r.layers, r.segments, r.outlines, r.labels);
+  return std::tie(l.source_file, l.units, l.metres_per_unit, l.dxf_origin_m, l.layers, l.segments, l.outlines, l.labels) ==
+         std::tie(r.source_file, r.units, r.metres_per_unit, r.dxf_origin_m, r.layers, r.segments, r.outlines, r.labels);
 }
 
 PlanExtents FloorPlan::extents() const {

@@ -52,6 +52,9 @@ struct FloorPlan {
   std::string source_file;  // absolute in memory; relative to the project file on disk
   std::string units = "m";  // the source file's units, as read or overridden
   double metres_per_unit = 1.0;
+  // plan = dxf * metres_per_unit - dxf_origin_m: far-from-origin (georeferenced) drawings are re-centred for
+  // computation; this keeps where the plan's origin lies in the source file's frame, in metres.
+  Eigen::Vector2d dxf_origin_m = Eigen::Vector2d::Zero();
   std::vector<PlanLayer> layers;
   std::vector<PlanSegment> segments;
   std::vector<PlanOutline> outlines;

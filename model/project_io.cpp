@@ -40,6 +40,7 @@ json plan_to_json(const FloorPlan& plan, const std::string& base) {
   return {{"source_file", path_relative_to(plan.source_file, base)},
           {"units", plan.units},
           {"metres_per_unit", plan.metres_per_unit},
+          {"dxf_origin_m", vec2(plan.dxf_origin_m)},
           {"layers", layers},
           {"segments", segments},
           {"outlines", outlines},
@@ -52,6 +53,7 @@ FloorPlan plan_from_json(const JsonReader& r, const std::string& base) {
   plan.units = r.string_or("units", "m");
   plan.metres_per_unit = r.number_or("metres_per_unit", 1.0);
   if (plan.metres_per_unit <= 0) r.at("metres_per_unit").fail("must be > 0");
+  if (auto origin = r.find("dxf_origin_m")) plan.dxf_origin_m = read_vec2(*origin);
   if (auto layers = r.find("layers"))
     for (std::size_t i = 0; i < layers->size(); ++i) {
       const JsonReader l = layers->at(i);
