@@ -1,8 +1,9 @@
 #include "model/floor_plan.h"
 
 #include <algorithm>
-#include <cctype>
 #include <tuple>
+
+#include "model/layer_names.h"
 
 namespace plenopath {
 
@@ -20,8 +21,9 @@ bool operator==(const PlanLayer& l, const PlanLayer& r) {
          std::tie(r.name, r.color, r.visible, r.occluder, r.entity_count);
 }
 bool operator==(const FloorPlan& l, const FloorPlan& r) {
-  return std::tie(l.source_file, l.units, l.metres_per_unit, l.dxf_origin_m, l.layers, l.segments, l.outlines, l.labels) ==
-         std::tie(r.source_file, r.units, r.metres_per_unit, r.dxf_origin_m, r.layers, r.segments, r.outlines, r.labels);
+  return std::tie(l.source_file, l.units, l.metres_per_unit, l.dxf_origin_m, l.layers, l.segments, l.outlines,
+                  l.labels) == std::tie(r.source_file, r.units, r.metres_per_unit, r.dxf_origin_m, r.layers,
+                                        r.segments, r.outlines, r.labels);
 }
 
 PlanExtents FloorPlan::extents() const {
@@ -68,12 +70,7 @@ std::vector<PlanSegment> FloorPlan::occluder_segments() const {
 }
 
 bool guess_layer_is_occluder(const std::string& layer_name) {
-  std::string upper = layer_name;
-  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
-  auto has = [&upper](const char* word) { return upper.find(word) != std::string::npos; };
-  for (const char* not_occluding : {"FURN", "DOOR", "TEXT", "ANNO", "DIM", "LABEL", "HATCH", "WINDOW"})
-    if (has(not_occluding)) return false;
-  return has("WALL") || has("COL") || has("STRUCT") || has("MUR") || has("PILLAR");
+  return occluder_vote_from_name(layer_name) > 0;
 }
 
 }  // namespace plenopath
