@@ -34,6 +34,9 @@ import ezdxf.recover
 from ezdxf.addons import iterdxf
 from ezdxf.math import OCS, Vec3, bulge_to_arc
 from ezdxf.math import BSpline, fit_points_to_cad_cv
+from ezdxf.math.transformtools import InsertTransformationError, NonUniformScalingError
+from ezdxf.entities import Ellipse
+from ezdxf.render.trace import TraceBuilder
 
 # Issue 16: "of the 69 ezdxf files with 2-D geometry, at least 66 import".
 MIN_IMPORTED = 66
@@ -49,9 +52,16 @@ MAX_NESTING = 32
 logging.getLogger("ezdxf").setLevel(logging.ERROR)  # the recover notes are kept in the report instead
 SPLINE_FLATTENING = 1e-7  # of the spline's control-point box diagonal
 
-# Genuine disagreements between ezdxf and the DXF reference, each with the reason. file -> {
-#   "counts": [(layer, kind), ...] mismatches that are allowed, or "box": reason }. Empty until one is shown.
+# Genuine disagreements between ezdxf and the file, each with the reason: file -> {"counts": {(layer, kind): the
+# count the file holds (ezdxf.addons.iterdxf sees them)}, "box": why ezdxf's box is no oracle here}.
+_TEXT_FRAMES = ("ezdxf 0.18 destroys the LWPOLYLINE text frames that AutoCAD writes beside a framed MTEXT for "
+                "readers older than R2018 (MTEXT xdata ACAD_MTEXT_TEXT_BORDERS, ezdxf/entities/mtext.py "
+                "post_load_hook); they are model-space entities of the file and the importer reads them as such")
 ALLOWED = {
+    "integration_tests_data_mtext_framed_columns.dxf": {
+        "counts": {("DYNAMIC", "LWPOLYLINE"): 3, ("STATIC", "LWPOLYLINE"): 3}, "box": _TEXT_FRAMES},
+    "integration_tests_data_mtext_text_frame.dxf": {
+        "counts": {("MTEXT_EXPLODE", "LWPOLYLINE"): 1}, "box": _TEXT_FRAMES},
 }
 
 
@@ -131,6 +141,16 @@ def add_bulge_polyline(box, ocs, elevation, vertices, closed):
             center, a0, a1, r = bulge_to_arc((x0, y0), (x1, y1), b)
             add_ocs_arc(box, ocs, center.x, center.y, elevation, r, a0, a1)
     return segments
+
+
+def add_widths(box, polyline, ocs, elevation, wide):
+    """A wide polyline is drawn as a filled band (AutoCAD's extents include it): the band's outline from
+    ezdxf's renderer (miter joints; arcs as 4096 chords per circle, 3e-7 of the radius inside)."""
+    if not wide:
+        return
+    for face in TraceBuilder.from_polyline(polyline, segments=4096).faces_wcs(ocs, elevation):
+        for p in face:
+            box.add_point(p)
 
 
 def add_points(box, points, transform=None):
@@ -222,6 +242,8 @@ def add_geometry(box, e, depth, problems):
         return 1
     if kind == "LWPOLYLINE":
         ocs = e.ocs()
+        add_widths(box, e, ocs, e.dxf.elevation,
+                   e.dxf.const_width > 0 or any(s > 0 or t > 0 for s, t in e.get_points("se")))
         return add_bulge_polyline(box, ocs, e.dxf.elevation, [(x, y, b) for x, y, b in e.get_points("xyb")],
                                   e.closed)
     if kind == "POLYLINE":
@@ -231,6 +253,10 @@ def add_geometry(box, e, depth, problems):
         # A spline-fit polyline is drawn through its fit vertices (flag 8), not its frame (flag 16).
         vs = [v for v in e.vertices if not (spline_fit and v.dxf.flags & 16)]
         verts = [(v.dxf.location.x, v.dxf.location.y, v.dxf.bulge) for v in vs]
+        if not spline_fit:
+            add_widths(box, e, e.ocs(), e.dxf.elevation.z,
+                       e.dxf.default_start_width > 0 or e.dxf.default_end_width > 0 or
+                       any(v.dxf.get("start_width", 0) > 0 or v.dxf.get("end_width", 0) > 0 for v in vs))
         return add_bulge_polyline(box, e.ocs(), e.dxf.elevation.z, verts, e.is_closed)
     if kind == "SPLINE":
         try:
@@ -257,20 +283,61 @@ def add_geometry(box, e, depth, problems):
             problems.append(f"MLINE {e.dxf.handle}: {err}")
         return 1 if n else 0
     if kind == "INSERT":
-        if depth >= MAX_NESTING:
-            problems.append(f"INSERT nested deeper than {MAX_NESTING}")
-            return 0
         n = 0
         try:
-            inserts = list(e.multi_insert()) if e.mcount > 1 else [e]
-            for insert in inserts:
-                for ve in insert.virtual_entities():  # ATTDEF left out, ATTRIBs are not among them
-                    if ve.dxftype() == "INSERT" or ve.dxftype() in GEOMETRY_KINDS:
-                        n += add_geometry(box, ve, depth + 1, problems)
+            for piece in block_geometry(e, depth, problems):
+                n += add_geometry(box, piece, depth + 1, problems)
         except Exception as err:
             problems.append(f"INSERT {e.dxf.get('name', '?')}: {type(err).__name__}: {err}")
         return n
     return 0
+
+
+def block_geometry(insert, depth, problems):
+    """The geometry entities of a block reference in WCS, nested blocks and MINSERT arrays resolved.
+
+    Like ezdxf's Insert.virtual_entities(), but leaving out what the box leaves out before it is copied:
+    virtual_entities() renders a DIMENSION (and other non-copyable entities) inside a block into LINE/SOLID/
+    MTEXT pieces, which would put dimension graphics into the box."""
+    if depth >= MAX_NESTING:
+        problems.append(f"INSERT nested deeper than {MAX_NESTING}")
+        return
+    if insert.mcount > 1:
+        for cell in insert.multi_insert():
+            yield from block_geometry(cell, depth, problems)
+        return
+    block = insert.block()
+    if block is None:
+        return  # missing block definition: nothing to draw (the importer skips or reads it empty)
+    m = insert.matrix44()
+    for entity in block:
+        kind = entity.dxftype()
+        if kind not in GEOMETRY_KINDS and kind != "INSERT":
+            continue
+        if kind == "POLYLINE" and not entity.is_2d_polyline:
+            continue
+        yield from transformed(entity.copy(), m, depth, problems)
+
+
+def transformed(entity, m, depth, problems):
+    """`entity` (a copy) moved by the block transformation m; what cannot be moved as such (arcs under
+    non-uniform scaling, sheared nested blocks) is split into pieces first, as ezdxf's explode does."""
+    try:
+        entity.transform(m)
+        yield entity
+    except NonUniformScalingError:
+        kind = entity.dxftype()
+        if kind in ("ARC", "CIRCLE"):
+            if entity.dxf.radius > 0:
+                yield Ellipse.from_arc(entity).transform(m)
+        elif kind in ("LWPOLYLINE", "POLYLINE"):
+            for piece in entity.virtual_entities():
+                yield from transformed(piece, m, depth, problems)
+        else:
+            problems.append(f"{kind} in a block: non-uniform scaling not supported by ezdxf")
+    except InsertTransformationError:  # nested INSERT sheared by m: resolve it first, then move the pieces
+        for piece in block_geometry(entity, depth + 1, problems):
+            yield from transformed(piece, m, depth, problems)
 
 
 def read_with_ezdxf(path):
@@ -319,8 +386,13 @@ def ezdxf_facts(path):
         if kind == "POLYLINE" and not e.is_2d_polyline:
             three_d[layer] = three_d.get(layer, 0) + 1
             continue
+        n = 1
+        if kind == "MTEXT" and e.has_columns:
+            # Before R2018 each further column is an MTEXT of its own in the file, which ezdxf links to the
+            # first and takes out of the layout: count them as the file holds them.
+            n += len(e.columns.linked_columns)
         counts.setdefault(layer, {})
-        counts[layer][kind] = counts[layer].get(kind, 0) + 1
+        counts[layer][kind] = counts[layer].get(kind, 0) + n
         if kind == "INSERT" and facts["read"] == "iterdxf":
             facts["box_complete"] = False  # no blocks without the document
             facts["problems"].append("INSERT not exploded (no document)")
@@ -379,7 +451,7 @@ def compare(name, facts, ours):
     if missing:
         return [f"JSON lacks {', '.join(missing)}"], {}
     allowed = ALLOWED.get(name, {})
-    allowed_counts = {tuple(x) for x in allowed.get("counts", [])}
+    allowed_counts = allowed.get("counts", {})
     mismatches = []
     skipped_listed = j["skipped"]
     truncated = j["entities_skipped"] > len(skipped_listed)
@@ -398,7 +470,9 @@ def compare(name, facts, ours):
         if key[1] not in READ_KINDS:
             continue
         r, s, t = read.get(key, 0), invalid.get(key, 0), theirs.get(key, 0)
-        if r + s == t or key in allowed_counts:
+        if key in allowed_counts:
+            t = allowed_counts[key]
+        if r + s == t:
             continue
         if truncated and r <= t:
             continue  # the rest may be among the skipped entities not listed
