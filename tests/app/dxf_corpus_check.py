@@ -32,7 +32,7 @@ import time
 import ezdxf
 import ezdxf.recover
 from ezdxf.addons import iterdxf
-from ezdxf.math import OCS, Vec3, bulge_to_arc
+from ezdxf.math import Vec3, bulge_to_arc
 from ezdxf.math import BSpline, fit_points_to_cad_cv
 from ezdxf.math.transformtools import InsertTransformationError, NonUniformScalingError
 from ezdxf.entities import Ellipse
