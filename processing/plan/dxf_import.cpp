@@ -1,10 +1,8 @@
-// DXF to FloorPlan. Three stages: a structural pre-scan of the group-code pairs (line numbers for errors;
-// binary, truncated and malformed files stop here), dxflib's entity callbacks into per-block primitive
-// lists (in drawing units, OCS mirrored back to WCS), then block expansion, unit conversion and clean-up.
+// DXF to FloorPlan in five stages: tags (ASCII or binary) with their strings decoded to UTF-8; sections
+// into layers, blocks and model-space entities, each entity validated on its own; block expansion into
+// placed curves (still exact, drawing units); units from the header or the drawing; then chords, strays,
+// re-centring, metres, clean-up and the occluder proposal.
 #include "processing/plan/dxf_import.h"
-
-#include <dxflib/dl_creationadapter.h>
-#include <dxflib/dl_dxf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,35 +13,55 @@
 
 #include "model/error.h"
 #include "processing/plan/dxf_cleanup.h"
+#include "processing/plan/dxf_entities.h"
+#include "processing/plan/dxf_tags.h"
+#include "processing/plan/dxf_text.h"
+#include "processing/plan/occluder_proposal.h"
+#include "processing/plan/units_inference.h"
 
 namespace plenopath {
 
 double metres_per_unit(const std::string& units) {
   static const std::map<std::string, double> table = {
-      {"m", 1.0},      {"mm", 0.001},     {"cm", 0.01},    {"dm", 0.1},     {"km", 1000.0},
-      {"um", 1e-6},    {"in", 0.0254},    {"ft", 0.3048},  {"yd", 0.9144},  {"mi", 1609.344},
-      {"mil", 2.54e-5}, {"dam", 10.0},    {"hm", 100.0}};
+      {"m", 1.0},       {"mm", 0.001},  {"cm", 0.01},   {"dm", 0.1},    {"km", 1000.0},
+      {"um", 1e-6},     {"in", 0.0254}, {"ft", 0.3048}, {"yd", 0.9144}, {"mi", 1609.344},
+      {"mil", 2.54e-5}, {"dam", 10.0},  {"hm", 100.0}};
   auto it = table.find(units);
-  if (it == table.end()) throw Error("unknown units '" + units + "' (use mm, cm, dm, m, km, um, in, ft, yd, mi)");
+  if (it == table.end())
+    throw Error("unknown units '" + units + "' (use mm, cm, dm, m, km, um, in, ft, yd, mi)");
   return it->second;
 }
 
 std::string units_of_insunits(int insunits) {
   switch (insunits) {
-    case 1: return "in";
-    case 2: return "ft";
-    case 3: return "mi";
-    case 4: return "mm";
-    case 5: return "cm";
-    case 6: return "m";
-    case 7: return "km";
-    case 9: return "mil";
-    case 10: return "yd";
-    case 13: return "um";
-    case 14: return "dm";
-    case 15: return "dam";
-    case 16: return "hm";
-    default: return "";
+    case 1:
+      return "in";
+    case 2:
+      return "ft";
+    case 3:
+      return "mi";
+    case 4:
+      return "mm";
+    case 5:
+      return "cm";
+    case 6:
+      return "m";
+    case 7:
+      return "km";
+    case 9:
+      return "mil";
+    case 10:
+      return "yd";
+    case 13:
+      return "um";
+    case 14:
+      return "dm";
+    case 15:
+      return "dam";
+    case 16:
+      return "hm";
+    default:
+      return "";
   }
 }
 
@@ -54,722 +72,627 @@ void DxfImportOptions::check() const {
   if (!(chord_tolerance_m > 0.0 && chord_tolerance_m <= 1.0)) fail("chord_tolerance_m must be in (0, 1] m");
   if (!(single_line_wall_thickness_m > 0.0 && single_line_wall_thickness_m <= 0.5))
     fail("single_line_wall_thickness_m must be in (0, 0.5] m");
-  if (!(max_coordinate_m > 0.0)) fail("max_coordinate_m must be positive");
+  if (!(recentre_beyond_m > 0.0)) fail("recentre_beyond_m must be positive");
   if (max_segments == 0) fail("max_segments must be positive");
 }
 
 namespace {
 
-constexpr int kMaxBlockDepth = 16;
-constexpr int kMaxArcPieces = 4096;
-constexpr int kMaxArrayCells = 100000;
+constexpr int kMaxBlockDepth = 32;
 
 // ---------------------------------------------------------------------------------------------------------
-// Stage 1: structure. Every pair is "integer group code line, value line"; numbers must parse; the file
-// must end with EOF (or at least close its last section).
+// Stage 1: tags, the header's encoding and units, strings to UTF-8.
 
-bool is_real_code(int c) {
-  return (c >= 10 && c <= 59) || (c >= 110 && c <= 149) || (c >= 210 && c <= 239) || (c >= 460 && c <= 469) ||
-         (c >= 1010 && c <= 1059);
-}
-bool is_int_code(int c) {
-  return (c >= 60 && c <= 99) || (c >= 170 && c <= 179) || (c >= 270 && c <= 289) || (c >= 370 && c <= 389) ||
-         (c >= 400 && c <= 409) || (c >= 1060 && c <= 1071);
-}
-
-std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
-
-struct PrescanResult {
-  std::map<std::string, int> skipped_kinds;  // entity kinds we do not read
+struct Header {
+  std::string acadver, codepage;
+  int insunits = -1;
 };
 
-void prescan(const std::string& bytes, const std::string& name, PrescanResult* out) {
-  auto fail_line = [&name](std::size_t line, const std::string& what) {
-    throw file_error(name, "line " + std::to_string(line) + ": " + what);
-  };
-  if (bytes.empty()) throw file_error(name, "the file is empty");
-  if (bytes.compare(0, 18, "AutoCAD Binary DXF") == 0)
-    throw file_error(name, "binary DXF is not supported: save the drawing as ASCII DXF");
-  std::vector<std::string> lines;
-  {
-    std::size_t start = 0, line_no = 1;
-    for (std::size_t i = 0; i <= bytes.size(); ++i) {
-      if (i == bytes.size() || bytes[i] == '\n') {
-        std::string l = bytes.substr(start, i - start);
-        if (!l.empty() && l.back() == '\r') l.pop_back();
-        if (l.size() > 2048) fail_line(line_no, "line longer than 2048 characters (not a DXF file?)");
-        lines.push_back(std::move(l));
-        start = i + 1;
-        ++line_no;
-      } else if (bytes[i] == '\0') {
-        fail_line(line_no, "binary data (NUL byte): not an ASCII DXF file");
-      }
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+  return s;
+}
+
+// "$VAR" (code 9) and the value tags that follow it, anywhere before the first entity section.
+Header read_header(const std::vector<DxfTag>& tags) {
+  Header h;
+  for (std::size_t i = 0; i + 1 < tags.size(); ++i) {
+    if (tags[i].code == 0 && (tags[i].value == "ENDSEC")) {
+      if (!h.acadver.empty() || !h.codepage.empty() || h.insunits >= 0) break;  // the header is done
+      continue;
     }
-    if (!lines.empty() && lines.back().empty()) lines.pop_back();
+    if (tags[i].code != 9) continue;
+    const DxfTag& v = tags[i + 1];
+    if (tags[i].value == "$ACADVER" && v.code == 1) h.acadver = upper(v.value);
+    if (tags[i].value == "$DWGCODEPAGE" && v.code == 3) h.codepage = v.value;
+    if (tags[i].value == "$INSUNITS" && v.code == 70) {
+      double u = 0.0;
+      if (dxf_number(v, &u)) h.insunits = static_cast<int>(u);
+    }
   }
-  static const std::set<std::string> read_kinds = {"LINE",   "LWPOLYLINE", "POLYLINE", "VERTEX", "SEQEND",
-                                                   "ARC",    "CIRCLE",     "ELLIPSE",  "SPLINE", "INSERT",
-                                                   "TEXT",   "MTEXT",      "ATTRIB",   "ATTDEF", "POINT"};
-  bool in_section = false, saw_eof = false, geometry_section = false, saw_section = false;
-  std::string expect_section_name;
-  for (std::size_t i = 0; i < lines.size(); i += 2) {
-    const std::size_t line_no = i + 1;
-    const std::string code_text = trim(lines[i]);
-    if (code_text.empty() || code_text.size() > 6 ||
-        !std::all_of(code_text.begin(), code_text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '-'; }))
-      fail_line(line_no, "expected a group code (an integer), found '" + code_text.substr(0, 40) + "'");
-    const int code = std::atoi(code_text.c_str());
-    if (i + 1 >= lines.size())
-      fail_line(line_no, "truncated: group code " + std::to_string(code) + " has no value");
-    const std::string value = trim(lines[i + 1]);
-    if (is_real_code(code) || is_int_code(code)) {
-      char* end = nullptr;
-      const double v = std::strtod(value.c_str(), &end);
-      if (value.empty() || end == value.c_str() || *end != '\0')
-        fail_line(line_no + 1, "group code " + std::to_string(code) + ": '" + value.substr(0, 40) + "' is not a number");
-      if (!std::isfinite(v) || std::abs(v) > 1e15)
-        fail_line(line_no + 1, "group code " + std::to_string(code) + ": absurd value " + value.substr(0, 40));
-      // Counts drive dxflib's allocations (vertices, knots, control points).
-      if (is_int_code(code) && code >= 70 && code <= 99 && std::abs(v) > 1e6)
-        fail_line(line_no + 1, "group code " + std::to_string(code) + ": implausible count " + value.substr(0, 40));
-      // dxflib sizes a SPLINE's knot, control and fit point lists from these counts.
-      if ((code == 72 || code == 73 || code == 74) && std::abs(v) > 100000)
-        fail_line(line_no + 1, "group code " + std::to_string(code) + ": implausible count " + value.substr(0, 40));
+  return h;
+}
+
+void decode_strings(std::vector<DxfTag>* tags, const std::string& encoding) {
+  for (DxfTag& t : *tags)
+    if (dxf_value_type(t.code) == DxfValueType::string)
+      t.value = dxf_decode_unicode_escapes(dxf_to_utf8(t.value, encoding));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 2: sections.
+
+struct Block {
+  std::string name;
+  std::size_t line = 0;
+  Eigen::Vector3d base = Eigen::Vector3d::Zero();
+  bool external = false;  // an external reference: its content lives in another file
+  std::vector<DxfEntity> entities;
+};
+
+struct Drawing {
+  std::map<std::string, PlanLayer> layers;
+  std::map<std::string, Block> blocks;
+  std::vector<DxfEntity> model;            // model-space entities that parsed
+  std::map<std::string, int> block_skips;  // reason -> count, inside blocks
+};
+
+struct Section {
+  std::string name;
+  std::size_t begin = 0, end = 0;  // tag indices of its content
+};
+
+std::vector<Section> find_sections(const std::vector<DxfTag>& tags) {
+  std::vector<Section> sections;
+  bool open = false;
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    if (tags[i].code != 0) continue;
+    const std::string& v = tags[i].value;
+    if (v == "SECTION") {
+      if (open) sections.back().end = i;  // SECTION inside a section: the first one ends here
+      Section s;
+      if (i + 1 < tags.size() && tags[i + 1].code == 2) {
+        s.name = upper(tags[i + 1].value);
+        ++i;
+      }
+      s.begin = i + 1;
+      s.end = tags.size();
+      sections.push_back(s);
+      open = true;
+    } else if ((v == "ENDSEC" || v == "EOF") && open) {
+      sections.back().end = i;
+      open = false;
     }
-    if (code == 0) {
-      if (value == "SECTION") {
-        if (in_section) fail_line(line_no + 1, "SECTION inside a section (missing ENDSEC)");
-        in_section = true;
-        saw_section = true;
-        expect_section_name = "yes";
-      } else if (value == "ENDSEC") {
-        if (!in_section) fail_line(line_no + 1, "ENDSEC without SECTION");
-        in_section = false;
-        geometry_section = false;
-      } else if (value == "EOF") {
-        if (in_section) fail_line(line_no + 1, "EOF inside a section (missing ENDSEC)");
-        saw_eof = true;
+  }
+  if (sections.empty()) sections.push_back({"ENTITIES", 0, tags.size()});  // bare entities, no sections
+  return sections;
+}
+
+// The entities of [begin, end): each from a code-0 tag to the next.
+std::vector<DxfEntityTags> split_entities(const std::vector<DxfTag>& tags, std::size_t begin,
+                                          std::size_t end) {
+  std::vector<DxfEntityTags> out;
+  std::size_t i = begin;
+  while (i < end && tags[i].code != 0) ++i;
+  while (i < end) {
+    std::size_t j = i + 1;
+    while (j < end && tags[j].code != 0) ++j;
+    out.push_back({&tags[i], &tags[0] + j});
+    i = j;
+  }
+  return out;
+}
+
+void read_layers(const std::vector<DxfTag>& tags, const Section& s, Drawing* d) {
+  for (const DxfEntityTags& e : split_entities(tags, s.begin, s.end)) {
+    if (e.kind() != "LAYER") continue;
+    PlanLayer layer;
+    int colour = 7, flags = 0;
+    for (const DxfTag* t = e.begin + 1; t != e.end; ++t) {
+      double v = 0.0;
+      if (t->code == 2) layer.name = t->value;
+      if (t->code == 62 && dxf_number(*t, &v)) colour = static_cast<int>(v);
+      if (t->code == 70 && dxf_number(*t, &v)) flags = static_cast<int>(v);
+    }
+    if (layer.name.empty()) continue;
+    layer.color = std::clamp(std::abs(colour), 0, 256);
+    layer.visible = colour >= 0 && !(flags & 1);
+    d->layers[layer.name] = layer;
+  }
+}
+
+struct Skips {
+  DxfImportReport* report;
+  void model(const std::string& kind, const std::string& layer, std::size_t line, const std::string& why) {
+    ++report->entities_skipped;
+    ++report->skipped_by_kind[kind];
+    if (report->skipped.size() < DxfImportReport::max_listed_skips)
+      report->skipped.push_back({line, kind, layer, why});
+  }
+};
+
+// The entities of an ENTITIES section or of one block, parsed. POLYLINE takes the VERTEX entities that
+// follow it; the ATTRIBs after an INSERT and every SEQEND are consumed here.
+template <typename OnEntity, typename OnSkip>
+void read_entities(const std::vector<DxfEntityTags>& entities, std::size_t from, std::size_t to,
+                   OnEntity on_entity, OnSkip on_skip) {
+  for (std::size_t i = from; i < to; ++i) {
+    const DxfEntityTags& e = entities[i];
+    const std::string& kind = e.kind();
+    if (kind == "SEQEND" || kind == "VERTEX") continue;
+    std::vector<DxfEntityTags> vertices;
+    if (kind == "POLYLINE")
+      while (i + 1 < to && entities[i + 1].kind() == "VERTEX") vertices.push_back(entities[++i]);
+    if (kind == "INSERT")
+      while (i + 1 < to && entities[i + 1].kind() == "ATTRIB") ++i;
+    std::string layer = "0";
+    for (const DxfTag* t = e.begin + 1; t != e.end; ++t)
+      if (t->code == 8) {
+        layer = t->value.empty() ? "0" : t->value;
         break;
-      } else if (geometry_section && !read_kinds.count(value) && value != "BLOCK" && value != "ENDBLK") {
-        ++out->skipped_kinds[value.substr(0, 40)];
       }
-    } else if (code == 2 && !expect_section_name.empty()) {
-      geometry_section = value == "ENTITIES" || value == "BLOCKS";
-      expect_section_name.clear();
+    if (const char* why = dxf_skip_reason(kind)) {
+      on_skip(kind, layer, e.line(), why);
+      continue;
+    }
+    try {
+      on_entity(parse_dxf_entity(e, vertices));
+    } catch (const DxfEntityError& err) {
+      on_skip(kind, layer, e.line(), err.why);
     }
   }
-  if (!saw_section) throw file_error(name, "no SECTION found: not a DXF file");
-  if (!saw_eof) {
-    if (in_section)
-      throw file_error(name, "truncated: the file ends inside a section (line " + std::to_string(lines.size()) + ")");
-    throw file_error(name, "truncated: no EOF marker after line " + std::to_string(lines.size()));
+}
+
+void read_blocks(const std::vector<DxfTag>& tags, const Section& s, Drawing* d, DxfImportReport* report) {
+  const std::vector<DxfEntityTags> entities = split_entities(tags, s.begin, s.end);
+  for (std::size_t i = 0; i < entities.size(); ++i) {
+    if (entities[i].kind() != "BLOCK") continue;
+    Block block;
+    block.line = entities[i].line();
+    double flags = 0.0;
+    Eigen::Vector3d base = Eigen::Vector3d::Zero();
+    for (const DxfTag* t = entities[i].begin + 1; t != entities[i].end; ++t) {
+      double v = 0.0;
+      if (t->code == 2 || (t->code == 3 && block.name.empty())) block.name = t->value;
+      if (t->code == 70) dxf_number(*t, &flags);
+      if (t->code >= 10 && t->code <= 30 && t->code % 10 == 0 && dxf_number(*t, &v) && std::abs(v) < 1e12)
+        base[(t->code - 10) / 10] = v;
+    }
+    block.base = base;
+    block.external = (static_cast<int>(flags) & (4 | 8)) != 0;
+    std::size_t j = i + 1;
+    while (j < entities.size() && entities[j].kind() != "ENDBLK" && entities[j].kind() != "BLOCK") ++j;
+    read_entities(
+        entities, i + 1, j, [&](DxfEntity e) { block.entities.push_back(std::move(e)); },
+        [&](const std::string& kind, const std::string&, std::size_t, const std::string& why) {
+          ++d->block_skips[kind + " (" + why + ")"];
+        });
+    i = (j < entities.size() && entities[j].kind() == "ENDBLK") ? j : j - 1;
+    if (block.name.empty()) {
+      report->warnings.push_back("line " + std::to_string(block.line) +
+                                 ": a block without a name is ignored");
+      continue;
+    }
+    if (d->blocks.count(block.name))
+      report->warnings.push_back("line " + std::to_string(block.line) + ": block '" + block.name +
+                                 "' is defined twice; the first definition is used");
+    else
+      d->blocks.emplace(block.name, std::move(block));
   }
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Stage 2: dxflib callbacks into primitives per block.
+// Stage 3: block expansion.
 
-struct Polyline {
-  std::vector<Eigen::Vector2d> points;
-  bool closed = false;
-  bool whole = false;  // keep as an outline (polylines, circles, ellipses, splines)
+struct PlacedCurve {
+  const DxfCurve* curve;
+  Eigen::Affine3d world_from_curve;
   std::string layer;
+  int top;  // index of the model-space entity it came from
+  bool solid_fill;
 };
 
-struct Label {
+struct PlacedLabel {
   Eigen::Vector2d position;
   std::string text;
-  double height = 0.0;
+  double height;
   std::string layer;
+  int top;
 };
 
-struct Insert {
-  std::string block;
-  std::string layer;
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();
-  Eigen::Vector2d scale = Eigen::Vector2d::Ones();
-  double rotation = 0.0;  // radians
-  int cols = 1, rows = 1;
-  double col_spacing = 0.0, row_spacing = 0.0;
-  bool mirrored_ocs = false;  // extrusion (0,0,-1)
-};
-
-struct Container {
-  Eigen::Vector2d base = Eigen::Vector2d::Zero();
-  std::vector<Polyline> polylines;
-  std::vector<Label> labels;
-  std::vector<Insert> inserts;
-};
-
-// Appends points of the arc (centre c, radius r, from angle a0 going CCW by sweep (may be negative)),
-// excluding the first point, with chords no further than `tolerance` from the arc.
-int append_arc(const Eigen::Vector2d& c, double r, double a0, double sweep, double tolerance,
-               std::vector<Eigen::Vector2d>* out) {
-  r = std::abs(r);
-  int pieces = 1;
-  if (r > tolerance) {
-    const double step = 2.0 * std::acos(std::clamp(1.0 - tolerance / r, -1.0, 1.0));
-    pieces = static_cast<int>(std::ceil(std::abs(sweep) / std::max(step, 1e-9)));
-  }
-  pieces = std::clamp(pieces, std::abs(sweep) > 1e-12 ? 2 : 1, kMaxArcPieces);
-  for (int k = 1; k <= pieces; ++k) {
-    const double a = a0 + sweep * k / pieces;
-    out->push_back(c + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
-  }
-  return pieces;
-}
-
-// Points of the bulged segment p -> q (bulge = tan(included angle / 4), positive = CCW), excluding p.
-void append_bulge(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double bulge, double tolerance,
-                  std::vector<Eigen::Vector2d>* out, int* arcs) {
-  const double chord = (q - p).norm();
-  if (std::abs(bulge) < 1e-9 || chord <= 0.0 || !std::isfinite(bulge)) {
-    out->push_back(q);
-    return;
-  }
-  bulge = std::clamp(bulge, -1e6, 1e6);
-  const double sweep = 4.0 * std::atan(bulge);
-  const double radius = chord / (2.0 * std::sin(std::abs(sweep) / 2.0));
-  const Eigen::Vector2d mid = 0.5 * (p + q);
-  const Eigen::Vector2d dir = (q - p) / chord;
-  const Eigen::Vector2d left(-dir.y(), dir.x());
-  // Distance from the chord's midpoint to the centre, signed towards the left for a CCW arc under pi.
-  const double h = radius * std::cos(std::abs(sweep) / 2.0);
-  const Eigen::Vector2d centre = mid + (sweep > 0 ? 1.0 : -1.0) * h * left;
-  const double a0 = std::atan2(p.y() - centre.y(), p.x() - centre.x());
-  append_arc(centre, radius, a0, sweep, tolerance, out);
-  out->back() = q;  // exact end
-  ++*arcs;
-}
-
-// A non-uniform rational B-spline evaluated with de Boor's algorithm.
-Eigen::Vector2d eval_spline(const std::vector<Eigen::Vector3d>& ctrl_w, const std::vector<double>& knots,
-                            int degree, double t) {
-  const int n = static_cast<int>(ctrl_w.size());
-  // The knot span holding t: knots[k] <= t < knots[k+1], degree <= k <= n-1.
-  const auto span = std::upper_bound(knots.begin() + degree + 1, knots.begin() + n, t);
-  const int k = static_cast<int>(span - knots.begin()) - 1;
-  std::vector<Eigen::Vector3d> d(degree + 1);
-  for (int j = 0; j <= degree; ++j) d[j] = ctrl_w[k - degree + j];
-  for (int r = 1; r <= degree; ++r)
-    for (int j = degree; j >= r; --j) {
-      const int i = k - degree + j;
-      const double denom = knots[i + degree + 1 - r] - knots[i];
-      const double alpha = denom > 0.0 ? (t - knots[i]) / denom : 0.0;
-      d[j] = (1.0 - alpha) * d[j - 1] + alpha * d[j];
-    }
-  const double w = std::abs(d[degree].z()) > 1e-300 ? d[degree].z() : 1.0;
-  return {d[degree].x() / w, d[degree].y() / w};
-}
-
-class Collector : public DL_CreationAdapter {
- public:
-  explicit Collector(double arc_tolerance) : arc_tolerance_(arc_tolerance) { current_ = &model_; }
-
-  int insunits = -1;
-  std::map<std::string, PlanLayer> layers;
-  std::map<std::string, Container> blocks;
-  Container model_;
-  int model_entities = 0;
-  int arcs = 0;
-  std::vector<std::string> warnings;
-  double arc_tolerance_;
-
-  void setVariableInt(const std::string& key, int value, int) override {
-    if (key == "$INSUNITS") insunits = value;
-  }
-  void addLayer(const DL_LayerData& d) override {
-    PlanLayer l;
-    l.name = d.name;
-    const int colour = attributes.getColor();
-    l.color = std::abs(colour);
-    l.visible = colour >= 0 && !(d.flags & 1) && !d.off;
-    layers[d.name] = l;
-  }
-  void addBlock(const DL_BlockData& d) override {
-    finish_polyline();
-    current_ = &blocks[d.name];
-    current_->base = {d.bpx, d.bpy};
-  }
-  void endBlock() override {
-    finish_polyline();
-    current_ = &model_;
-  }
-  void addLine(const DL_LineData& d) override {
-    finish_polyline();
-    Polyline p;  // LINE is in WCS: no OCS mirroring
-    p.points = {{d.x1, d.y1}, {d.x2, d.y2}};
-    add(std::move(p));
-  }
-  void addArc(const DL_ArcData& d) override {
-    finish_polyline();
-    Polyline p;
-    double a0 = d.angle1 * M_PI / 180.0, a1 = d.angle2 * M_PI / 180.0;
-    double sweep = a1 - a0;
-    while (sweep <= 0.0) sweep += 2.0 * M_PI;
-    if (sweep > 2.0 * M_PI) sweep = std::fmod(sweep, 2.0 * M_PI);
-    const Eigen::Vector2d c(d.cx, d.cy);
-    p.points.push_back(c + std::abs(d.radius) * Eigen::Vector2d(std::cos(a0), std::sin(a0)));
-    append_arc(c, d.radius, a0, sweep, arc_tolerance_, &p.points);
-    ++arcs;
-    add(ocs(std::move(p)));
-  }
-  void addCircle(const DL_CircleData& d) override {
-    finish_polyline();
-    Polyline p;
-    p.whole = true;
-    p.closed = true;
-    const Eigen::Vector2d c(d.cx, d.cy);
-    p.points.push_back(c + Eigen::Vector2d(std::abs(d.radius), 0.0));
-    append_arc(c, d.radius, 0.0, 2.0 * M_PI, arc_tolerance_, &p.points);
-    p.points.pop_back();  // closed: the last equals the first
-    ++arcs;
-    add(ocs(std::move(p)));
-  }
-  void addEllipse(const DL_EllipseData& d) override {
-    finish_polyline();
-    Polyline p;
-    p.whole = true;
-    const Eigen::Vector2d c(d.cx, d.cy), major(d.mx, d.my);
-    const double ratio = std::clamp(std::abs(d.ratio), 1e-9, 1.0);
-    const Eigen::Vector2d minor = ratio * Eigen::Vector2d(-major.y(), major.x());
-    double t0 = d.angle1, t1 = d.angle2;
-    double sweep = t1 - t0;
-    while (sweep <= 1e-12) sweep += 2.0 * M_PI;
-    if (sweep > 2.0 * M_PI + 1e-9) sweep = std::fmod(sweep, 2.0 * M_PI);
-    const bool full = std::abs(sweep - 2.0 * M_PI) < 1e-9;
-    const double r = major.norm();
-    int pieces = 2;
-    if (r > arc_tolerance_)
-      pieces = static_cast<int>(std::ceil(sweep / (2.0 * std::acos(std::clamp(1.0 - arc_tolerance_ / r, -1.0, 1.0)))));
-    pieces = std::clamp(pieces, 4, kMaxArcPieces);
-    for (int k = 0; k <= pieces; ++k) {
-      const double t = t0 + sweep * k / pieces;
-      p.points.push_back(c + std::cos(t) * major + std::sin(t) * minor);
-    }
-    if (full) {
-      p.points.pop_back();
-      p.closed = true;
-    }
-    ++arcs;
-    // ELLIPSE is in WCS, but its minor axis follows the extrusion: mirrored when it points down.
-    if (extrusion_down()) {
-      for (auto& q : p.points) q = c + reflect_minor(q - c, major);
-    }
-    add(std::move(p));
-  }
-  void addPolyline(const DL_PolylineData& d) override {
-    finish_polyline();
-    pending_ = Polyline();
-    pending_.closed = (d.flags & 1) != 0;
-    pending_.whole = true;
-    pending_.layer = attributes.getLayer();
-    pending_mirrored_ = extrusion_down();
-    pending_bulges_.clear();
-    in_polyline_ = true;
-    old_style_ = false;
-  }
-  void addVertex(const DL_VertexData& d) override {
-    if (!in_polyline_) return;
-    if (pending_.points.size() >= 1000000) return;
-    pending_.points.emplace_back(d.x, d.y);
-    pending_bulges_.push_back(d.bulge);
-  }
-  // LWPOLYLINE: addPolyline, its vertices, endEntity. Old-style POLYLINE: addPolyline, endEntity (no
-  // vertices yet), then one VERTEX entity after another until SEQEND (endSequence).
-  void endEntity() override {
-    if (!in_polyline_) return;
-    if (pending_.points.empty()) old_style_ = true;
-    if (!old_style_) finish_polyline();
-  }
-  void endSequence() override { finish_polyline(); }
-  void addSpline(const DL_SplineData& d) override {
-    finish_polyline();
-    spline_degree_ = static_cast<int>(d.degree);
-    spline_closed_ = (d.flags & 1) != 0;
-    spline_ctrl_.clear();
-    spline_knots_.clear();
-    spline_fit_.clear();
-    spline_layer_ = attributes.getLayer();
-    in_spline_ = true;
-  }
-  void addControlPoint(const DL_ControlPointData& d) override {
-    if (in_spline_ && spline_ctrl_.size() < 100000) {
-      const double w = (std::isfinite(d.w) && d.w > 0.0) ? d.w : 1.0;
-      spline_ctrl_.emplace_back(d.x * w, d.y * w, w);
-    }
-  }
-  void addKnot(const DL_KnotData& d) override {
-    if (in_spline_ && spline_knots_.size() < 100000) spline_knots_.push_back(d.k);
-  }
-  void addFitPoint(const DL_FitPointData& d) override {
-    if (in_spline_ && spline_fit_.size() < 100000) spline_fit_.emplace_back(d.x, d.y);
-  }
-  void addInsert(const DL_InsertData& d) override {
-    finish_polyline();
-    Insert ins;
-    ins.block = d.name;
-    ins.layer = attributes.getLayer();
-    ins.position = {d.ipx, d.ipy};
-    ins.scale = {std::isfinite(d.sx) && d.sx != 0.0 ? d.sx : 1.0, std::isfinite(d.sy) && d.sy != 0.0 ? d.sy : 1.0};
-    ins.rotation = d.angle * M_PI / 180.0;
-    ins.cols = std::max(1, d.cols);
-    ins.rows = std::max(1, d.rows);
-    ins.col_spacing = d.colSp;
-    ins.row_spacing = d.rowSp;
-    ins.mirrored_ocs = extrusion_down();
-    if (static_cast<long long>(ins.cols) * ins.rows > kMaxArrayCells) {
-      warnings.push_back("INSERT of block '" + d.name + "': array of " + std::to_string(ins.cols) + " x " +
-                         std::to_string(ins.rows) + " reduced to one");
-      ins.cols = ins.rows = 1;
-    }
-    if (current_ == &model_) ++model_entities;
-    current_->inserts.push_back(ins);
-  }
-  void addText(const DL_TextData& d) override {
-    finish_polyline();
-    add_label({d.ipx, d.ipy}, d.text, d.height, extrusion_down());
-  }
-  void addMText(const DL_MTextData& d) override {
-    finish_polyline();
-    add_label({d.ipx, d.ipy}, mtext_chunks_ + d.text, d.height, false);
-    mtext_chunks_.clear();
-  }
-  void addMTextChunk(const std::string& text) override {
-    if (mtext_chunks_.size() < 100000) mtext_chunks_ += text;
-  }
-
-  void finish() { finish_polyline(); }
-
- private:
-  bool extrusion_down() {
-    const double* dir = getExtrusion() ? getExtrusion()->getDirection() : nullptr;
-    return dir && dir[2] < 0.0;
-  }
-  // OCS with extrusion (0,0,-1) to WCS: x is mirrored.
-  Polyline ocs(Polyline p) {
-    if (extrusion_down())
-      for (auto& q : p.points) q.x() = -q.x();
-    return p;
-  }
-  static Eigen::Vector2d reflect_minor(const Eigen::Vector2d& v, const Eigen::Vector2d& major) {
-    const double len = major.norm();
-    if (len <= 0.0) return v;
-    const Eigen::Vector2d u = major / len;
-    return 2.0 * v.dot(u) * u - v;
-  }
-  void add(Polyline p) {
-    if (p.layer.empty()) p.layer = attributes.getLayer();
-    if (current_ == &model_) ++model_entities;
-    current_->polylines.push_back(std::move(p));
-  }
-  void add_label(const Eigen::Vector2d& at, const std::string& text, double height, bool mirrored) {
-    Label l;
-    l.position = mirrored ? Eigen::Vector2d(-at.x(), at.y()) : at;
-    l.text = text.substr(0, 1000);
-    l.height = height;
-    l.layer = attributes.getLayer();
-    if (current_ == &model_) ++model_entities;
-    current_->labels.push_back(l);
-  }
-  void finish_polyline() {
-    if (in_spline_) finish_spline();
-    if (!in_polyline_) return;
-    in_polyline_ = false;
-    Polyline p;
-    p.closed = pending_.closed;
-    p.whole = true;
-    p.layer = pending_.layer;
-    const auto& v = pending_.points;
-    if (v.empty()) return;
-    p.points.push_back(v[0]);
-    const std::size_t n = v.size();
-    const std::size_t spans = pending_.closed ? n : n - 1;
-    for (std::size_t i = 0; i < spans; ++i) append_bulge(v[i], v[(i + 1) % n], pending_bulges_[i], arc_tolerance_, &p.points, &arcs);
-    if (pending_.closed && p.points.size() > 1) p.points.pop_back();  // the closing point repeats the first
-    if (pending_mirrored_)
-      for (auto& q : p.points) q.x() = -q.x();
-    if (current_ == &model_) ++model_entities;
-    current_->polylines.push_back(std::move(p));
-  }
-  void finish_spline() {
-    in_spline_ = false;
-    Polyline p;
-    p.whole = true;
-    p.closed = spline_closed_;
-    p.layer = spline_layer_;
-    const int n = static_cast<int>(spline_ctrl_.size());
-    const int degree = spline_degree_;
-    bool ok = degree >= 1 && degree <= 10 && n > degree;
-    std::vector<double> knots = spline_knots_;
-    if (ok && static_cast<int>(knots.size()) != n + degree + 1) {
-      // Missing or inconsistent knots: a clamped uniform vector.
-      knots.clear();
-      for (int i = 0; i < n + degree + 1; ++i)
-        knots.push_back(std::clamp(static_cast<double>(i - degree), 0.0, static_cast<double>(n - degree)));
-    }
-    for (std::size_t i = 1; ok && i < knots.size(); ++i)
-      if (!(knots[i] >= knots[i - 1]) || !std::isfinite(knots[i])) ok = false;
-    if (ok) {
-      const double t0 = knots[degree], t1 = knots[n];
-      if (!(t1 > t0)) ok = false;
-      if (ok) {
-        // Adaptive: split a parameter interval until its chord is within the tolerance of the curve.
-        const Eigen::Vector2d first = eval_spline(spline_ctrl_, knots, degree, t0);
-        p.points.push_back(first);
-        const int initial = std::clamp(n * 4, 8, 20000);
-        double prev_t = t0;
-        Eigen::Vector2d prev_p = first;
-        for (int k = 1; k <= initial; ++k) {
-          const double t = k == initial ? t1 - 1e-12 * (t1 - t0) : t0 + (t1 - t0) * k / initial;
-          refine(knots, degree, prev_t, prev_p, t, eval_spline(spline_ctrl_, knots, degree, t), 0, &p.points);
-          prev_t = t;
-          prev_p = p.points.back();
-        }
-      }
-    }
-    if (!ok) {
-      if (spline_fit_.size() >= 2) {
-        p.points = spline_fit_;
-      } else if (n >= 2) {
-        for (const auto& c : spline_ctrl_) p.points.emplace_back(c.x() / c.z(), c.y() / c.z());
-        warnings.push_back("SPLINE with an invalid degree or knot vector drawn through its control points");
-      } else {
-        return;
-      }
-    }
-    ++arcs;
-    add(std::move(p));
-  }
-  void refine(const std::vector<double>& knots, int degree, double ta, const Eigen::Vector2d& pa, double tb,
-              const Eigen::Vector2d& pb, int depth, std::vector<Eigen::Vector2d>* out) {
-    const double tm = 0.5 * (ta + tb);
-    const Eigen::Vector2d pm = eval_spline(spline_ctrl_, knots, degree, tm);
-    if (depth < 12 && out->size() < 200000 && distance_to_chord(pm, pa, pb) > arc_tolerance_) {
-      refine(knots, degree, ta, pa, tm, pm, depth + 1, out);
-      refine(knots, degree, tm, pm, tb, pb, depth + 1, out);
-    } else {
-      out->push_back(pb);
-    }
-  }
-  static double distance_to_chord(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    if (len2 <= 0.0) return (p - a).norm();
-    const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
-    return (p - (a + t * ab)).norm();
-  }
-
-  Container* current_ = nullptr;
-  Polyline pending_;
-  std::vector<double> pending_bulges_;
-  bool pending_mirrored_ = false;
-  bool in_polyline_ = false;
-  bool old_style_ = false;
-  bool in_spline_ = false;
-  int spline_degree_ = 3;
-  bool spline_closed_ = false;
-  std::vector<Eigen::Vector3d> spline_ctrl_;
-  std::vector<double> spline_knots_;
-  std::vector<Eigen::Vector2d> spline_fit_;
-  std::string spline_layer_;
-  std::string mtext_chunks_;
-};
-
-// ---------------------------------------------------------------------------------------------------------
-// Stage 3: block expansion into world polylines and labels (drawing units).
-
-struct Affine {
-  Eigen::Matrix2d m = Eigen::Matrix2d::Identity();
-  Eigen::Vector2d t = Eigen::Vector2d::Zero();
-  Eigen::Vector2d operator()(const Eigen::Vector2d& p) const { return m * p + t; }
-  Affine then(const Affine& outer) const { return {outer.m * m, outer.m * t + outer.t}; }
-};
+struct TooLarge {};
 
 struct Expander {
-  const std::map<std::string, Container>& blocks;
-  const std::string& name;
-  std::size_t max_segments;
-  std::vector<Polyline> polylines;
-  std::vector<Label> labels;
-  std::size_t segments = 0;
+  const Drawing& drawing;
+  std::size_t max_curves;
+  std::vector<PlacedCurve> curves;
+  std::vector<PlacedLabel> labels;
   int expanded = 0;
-  std::set<std::string> missing_blocks;
+  std::map<std::string, int> missing_blocks, cycles, external_blocks;
   std::vector<std::string> stack;
 
-  void expand(const Container& c, const Affine& world_from_local, const std::string& inherited_layer, int depth) {
-    auto layer_of = [&](const std::string& l) { return (l == "0" && !inherited_layer.empty()) ? inherited_layer : l; };
-    for (const auto& p : c.polylines) {
-      Polyline q = p;
-      q.layer = layer_of(p.layer);
-      for (auto& pt : q.points) pt = world_from_local(pt);
-      segments += q.points.size();
-      if (segments > max_segments)
-        throw file_error(name, "more than " + std::to_string(max_segments) +
-                                   " segments after expanding blocks (nested arrays?)");
-      polylines.push_back(std::move(q));
+  static double xy_scale(const Eigen::Affine3d& t) {
+    return std::sqrt(std::abs(t.linear().topLeftCorner<2, 2>().determinant()));
+  }
+
+  void place(const DxfEntity& e, const Eigen::Affine3d& world_from_parent, const std::string& layer, int top,
+             int depth) {
+    for (const DxfCurve& c : e.curves) {
+      if (curves.size() >= max_curves) throw TooLarge{};
+      curves.push_back({&c, world_from_parent * c.to_parent, layer, top, e.solid_fill});
     }
-    for (const auto& l : c.labels) {
-      Label q = l;
-      q.layer = layer_of(l.layer);
-      q.position = world_from_local(l.position);
-      q.height = l.height * std::sqrt(std::abs(world_from_local.m(0, 0) * world_from_local.m(1, 1) - world_from_local.m(0, 1) * world_from_local.m(1, 0)));
-      labels.push_back(q);
+    if (e.has_label) {
+      const Eigen::Vector3d p = world_from_parent * e.label_position;
+      labels.push_back({p.head<2>(), e.label_text, e.label_height * xy_scale(world_from_parent), layer, top});
     }
-    for (const auto& ins : c.inserts) {
-      auto it = blocks.find(ins.block);
-      if (it == blocks.end()) {
-        missing_blocks.insert(ins.block);
-        continue;
+    if (e.block.empty()) return;
+    auto it = drawing.blocks.find(e.block);
+    if (it == drawing.blocks.end()) {
+      ++missing_blocks[e.block];
+      return;
+    }
+    const Block& block = it->second;
+    if (block.external) {
+      ++external_blocks[e.block];
+      return;
+    }
+    if (std::find(stack.begin(), stack.end(), e.block) != stack.end() || depth >= kMaxBlockDepth) {
+      ++cycles[e.block];
+      return;
+    }
+    stack.push_back(e.block);
+    for (const Eigen::Affine3d& cell : e.cells) {
+      ++expanded;
+      const Eigen::Affine3d world_from_block = world_from_parent * cell * Eigen::Translation3d(-block.base);
+      for (const DxfEntity& child : block.entities) {
+        // Layer "0" inside a block takes the layer of the reference that places it.
+        const std::string& child_layer = child.layer == "0" ? layer : child.layer;
+        place(child, world_from_block, child_layer, top, depth + 1);
       }
-      if (std::find(stack.begin(), stack.end(), ins.block) != stack.end())
-        throw file_error(name, "block '" + ins.block + "' contains itself (INSERT cycle)");
-      if (depth >= kMaxBlockDepth)
-        throw file_error(name, "blocks nested deeper than " + std::to_string(kMaxBlockDepth) + " levels");
-      const Container& block = it->second;
-      const double c0 = std::cos(ins.rotation), s0 = std::sin(ins.rotation);
-      Eigen::Matrix2d rot;
-      rot << c0, -s0, s0, c0;
-      for (int r = 0; r < ins.rows; ++r)
-        for (int col = 0; col < ins.cols; ++col) {
-          // Block point p -> position + R * (S * (p - base) + array offset); then the INSERT's OCS mirror.
-          Affine local;
-          local.m = rot * ins.scale.asDiagonal();
-          const Eigen::Vector2d offset(col * ins.col_spacing, r * ins.row_spacing);
-          local.t = ins.position + rot * offset - local.m * block.base;
-          if (ins.mirrored_ocs) {
-            local.m.row(0) *= -1.0;
-            local.t.x() = -local.t.x();
-          }
-          ++expanded;
-          stack.push_back(ins.block);
-          expand(block, local.then(world_from_local), layer_of(ins.layer), depth + 1);
-          stack.pop_back();
-        }
     }
+    stack.pop_back();
   }
 };
+
+std::string plural(int n, const std::string& kind) { return std::to_string(n) + " " + kind; }
+
+std::string join_counts(const std::map<std::string, int>& counts, std::size_t max_items = 8) {
+  std::vector<std::pair<int, std::string>> items;
+  for (const auto& [k, n] : counts) items.emplace_back(-n, k);
+  std::sort(items.begin(), items.end());
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < max_items; ++i)
+    out += (i ? ", " : "") + plural(-items[i].first, items[i].second);
+  if (items.size() > max_items) out += ", ...";
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 4: units.
+
+UnitsEvidence evidence_of(const std::vector<PlacedCurve>& curves) {
+  std::vector<DrawingSegment> segments;
+  std::vector<DrawingArc> arcs;
+  for (const PlacedCurve& p : curves) {
+    const DxfCurve& c = *p.curve;
+    const double s = Expander::xy_scale(p.world_from_curve);
+    auto xy = [&p](const Eigen::Vector3d& q) { return Eigen::Vector2d((p.world_from_curve * q).head<2>()); };
+    if (c.kind == DxfCurve::Kind::arc) {
+      arcs.push_back({xy(c.centre), std::abs(c.radius) * s, std::abs(c.sweep)});
+    } else if (c.kind == DxfCurve::Kind::polyline && c.widths.empty()) {
+      const std::size_t n = c.points.size();
+      const std::size_t spans = c.closed ? n : (n > 0 ? n - 1 : 0);
+      for (std::size_t i = 0; i < spans; ++i) {
+        const double bulge = i < c.bulges.size() ? c.bulges[i] : 0.0;
+        const Eigen::Vector2d a = xy(c.points[i]), b = xy(c.points[(i + 1) % n]);
+        if (std::abs(bulge) < 1e-9) {
+          segments.push_back({a, b});
+        } else if (std::isfinite(bulge)) {  // a bulged span: an arc of this radius and sweep
+          const double sweep = 4.0 * std::atan(std::abs(bulge));
+          const double chord = (b - a).norm();
+          if (chord > 0.0) arcs.push_back({0.5 * (a + b), chord / (2.0 * std::sin(sweep / 2.0)), sweep});
+        }
+      }
+    }
+  }
+  return collect_units_evidence(segments, arcs);
+}
+
+void choose_units(const DxfImportOptions& options, int insunits, const std::vector<PlacedCurve>& curves,
+                  DxfImportReport* report) {
+  if (!options.units_override.empty()) {
+    report->units = options.units_override;
+    report->units_source = "override";
+    report->units_reason = "units chosen by the author";
+    return;
+  }
+  const UnitsEvidence evidence = evidence_of(curves);
+  const std::string header_units = units_of_insunits(insunits);
+  if (!header_units.empty()) {
+    std::string why;
+    if (units_plausible(header_units, evidence, &why)) {
+      report->units = header_units;
+      report->units_source = "header";
+      report->units_from_header = true;
+      report->units_reason = "$INSUNITS " + std::to_string(insunits) + " (" + header_units + ")" +
+                             (why.empty() ? std::string() : ": " + why);
+      return;
+    }
+    const UnitsInference inferred = infer_units(evidence);
+    if (!inferred.units.empty() && inferred.units != header_units) {
+      report->units = inferred.units;
+      report->units_source = "inferred";
+      report->units_reason = "the header says " + header_units + " ($INSUNITS " + std::to_string(insunits) +
+                             "), but " + why + "; " + inferred.reason;
+      report->warnings.push_back("units: " + report->units_reason);
+      return;
+    }
+    report->units = header_units;
+    report->units_source = "header";
+    report->units_from_header = true;
+    report->units_reason = "$INSUNITS " + std::to_string(insunits) + " (" + header_units + ")";
+    return;
+  }
+  const UnitsInference inferred = infer_units(evidence);
+  const std::string said =
+      insunits < 0 ? "no $INSUNITS in the header" : "$INSUNITS " + std::to_string(insunits) + " (unitless)";
+  if (!inferred.units.empty()) {
+    report->units = inferred.units;
+    report->units_source = "inferred";
+    report->units_reason = said + "; " + inferred.reason;
+  } else {
+    report->units = "m";
+    report->units_source = "assumed";
+    report->units_reason = said + " and nothing in the drawing to tell: assuming metres" +
+                           (inferred.reason.empty() ? std::string() : " (" + inferred.reason + ")");
+  }
+  report->warnings.push_back("units: " + report->units_reason);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 5: chords, strays.
+
+struct Chain {
+  std::vector<Eigen::Vector2d> points;  // drawing units
+  bool closed;
+  bool whole;
+  std::string layer;
+  int top;
+  bool solid_fill;
+};
+
+struct Box {
+  Eigen::Vector2d min = Eigen::Vector2d::Constant(1e300), max = Eigen::Vector2d::Constant(-1e300);
+  bool valid() const { return min.x() <= max.x(); }
+  void add(const Eigen::Vector2d& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  double distance_to(const Box& b) const {
+    const Eigen::Vector2d gap = (b.min - max).cwiseMax(min - b.max).cwiseMax(Eigen::Vector2d::Zero());
+    return gap.norm();
+  }
+};
+
+double percentile(std::vector<double> v, double q) {
+  const std::size_t k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * (v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+// Entities whose box lies more than ten bulk-sizes away from the bulk of the drawing (the box of the
+// middle 80 % of entity centres), when they are a small minority.
+std::set<int> find_strays(const std::map<int, Box>& boxes) {
+  std::set<int> strays;
+  if (boxes.size() < 10) return strays;
+  std::vector<double> xs, ys;
+  for (const auto& [top, b] : boxes) {
+    xs.push_back(0.5 * (b.min.x() + b.max.x()));
+    ys.push_back(0.5 * (b.min.y() + b.max.y()));
+  }
+  Box bulk;
+  bulk.add({percentile(xs, 0.1), percentile(ys, 0.1)});
+  bulk.add({percentile(xs, 0.9), percentile(ys, 0.9)});
+  double size = (bulk.max - bulk.min).maxCoeff();
+  if (!(size > 0.0)) {
+    for (const auto& [top, b] : boxes) size = std::max(size, (b.max - b.min).maxCoeff());
+  }
+  if (!(size > 0.0)) return strays;
+  for (const auto& [top, b] : boxes)
+    if (bulk.distance_to(b) > 10.0 * size) strays.insert(top);
+  if (strays.size() > std::max<std::size_t>(1, boxes.size() / 20))
+    strays.clear();  // two clusters, not strays
+  return strays;
+}
 
 }  // namespace
 
-FloorPlan import_dxf_from_memory(const std::string& bytes, const std::string& name, const DxfImportOptions& options,
-                                 DxfImportReport* report_out) {
+FloorPlan import_dxf_from_memory(const std::string& bytes, const std::string& name,
+                                 const DxfImportOptions& options, DxfImportReport* report_out) {
   options.check();
   DxfImportReport report;
-  PrescanResult scan;
-  prescan(bytes, name, &scan);
+  Skips skips{&report};
 
-  // Units first: the chord tolerance is given in metres.
-  // $INSUNITS is read by a light look-up so tessellation can use drawing units.
-  int insunits = -1;
-  {
-    const std::size_t at = bytes.find("$INSUNITS");
-    if (at != std::string::npos) {
-      std::istringstream rest(bytes.substr(at, 200));
-      std::string key, code, value;
-      std::getline(rest, key);
-      std::getline(rest, code);
-      std::getline(rest, value);
-      if (trim(code) == "70") insunits = std::atoi(trim(value).c_str());
-    }
-  }
-  std::string units = options.units_override;
-  if (units.empty()) {
-    units = units_of_insunits(insunits);
-    report.units_from_header = !units.empty();
-    if (units.empty()) {
-      units = "m";
-      report.warnings.push_back(insunits < 0 ? "no $INSUNITS in the header: assuming metres"
-                                             : "$INSUNITS " + std::to_string(insunits) + " is unitless or unknown: assuming metres");
-    }
-  }
-  const double scale = metres_per_unit(units);
-  report.units = units;
+  // Stage 1
+  DxfTags tags = read_dxf_tags(bytes, name);
+  report.binary = tags.binary;
+  for (const auto& w : tags.warnings) report.warnings.push_back(w);
+  if (!tags.reached_eof && tags.warnings.empty())
+    report.warnings.push_back("no EOF marker: the file may be cut short");
+  const Header header = read_header(tags.tags);
+  report.version = header.acadver;
+  report.codepage = valid_utf8(header.codepage);
+  decode_strings(&tags.tags, dxf_string_encoding(header.acadver, header.codepage));
 
-  Collector collector(options.chord_tolerance_m / scale);
-  {
-    std::istringstream stream(bytes);
-    DL_Dxf dxf;
-    try {
-      if (!dxf.in(stream, &collector)) throw file_error(name, "dxflib could not read the file");
-    } catch (const Error&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw file_error(name, std::string("unreadable DXF: ") + e.what());
-    }
-    collector.finish();
+  // Stage 2
+  Drawing drawing;
+  std::vector<Section> sections = find_sections(tags.tags);
+  for (const Section& s : sections)
+    if (s.name == "TABLES") read_layers(tags.tags, s, &drawing);
+  for (const Section& s : sections)
+    if (s.name == "BLOCKS") read_blocks(tags.tags, s, &drawing, &report);
+  for (const Section& s : sections) {
+    if (s.name != "ENTITIES") continue;
+    const std::vector<DxfEntityTags> entities = split_entities(tags.tags, s.begin, s.end);
+    read_entities(
+        entities, 0, entities.size(),
+        [&](DxfEntity e) {
+          if (e.paper_space)
+            skips.model(e.kind, e.layer, e.line, "paper space");
+          else
+            drawing.model.push_back(std::move(e));
+        },
+        [&](const std::string& kind, const std::string& layer, std::size_t line, const std::string& why) {
+          skips.model(kind, layer, line, why);
+        });
   }
-  for (const auto& w : collector.warnings) report.warnings.push_back(w);
-
-  Expander expander{collector.blocks, name, options.max_segments, {}, {}, 0, 0, {}, {}};
-  expander.expand(collector.model_, Affine(), "", 0);
-  for (const auto& b : expander.missing_blocks) report.warnings.push_back("INSERT of undefined block '" + b + "'");
-  report.blocks_expanded = expander.expanded;
-  report.arcs_tessellated = collector.arcs;
-  report.entities_read = collector.model_entities;
-  for (const auto& [kind, count] : scan.skipped_kinds) {
-    report.entities_skipped += count;
-    report.warnings.push_back(std::to_string(count) + " " + kind + " entit" + (count == 1 ? "y" : "ies") + " ignored");
-  }
+  if (!drawing.block_skips.empty())
+    report.warnings.push_back("inside blocks, left out: " + join_counts(drawing.block_skips));
 
   auto wanted = [&](const std::string& layer) {
-    return options.layers.empty() || std::find(options.layers.begin(), options.layers.end(), layer) != options.layers.end();
+    return options.layers.empty() ||
+           std::find(options.layers.begin(), options.layers.end(), layer) != options.layers.end();
   };
-  auto occludes = [&](const std::string& layer) {
-    if (options.occluder_layers.empty()) return guess_layer_is_occluder(layer);
-    return std::find(options.occluder_layers.begin(), options.occluder_layers.end(), layer) != options.occluder_layers.end();
-  };
+
+  // Stage 3: each model-space entity on its own, so one block bomb is skipped alone.
+  Expander expander{drawing, options.max_segments, {}, {}, 0, {}, {}, {}, {}};
+  std::vector<const DxfEntity*> tops;
+  for (const DxfEntity& e : drawing.model) {
+    if (!wanted(e.layer) && e.block.empty()) {
+      skips.model(e.kind, e.layer, e.line, "on a layer not chosen for import");
+      continue;
+    }
+    const std::size_t curves_before = expander.curves.size(), labels_before = expander.labels.size();
+    const int top = static_cast<int>(tops.size());
+    try {
+      expander.place(e, Eigen::Affine3d::Identity(), e.layer, top, 0);
+    } catch (const TooLarge&) {
+      expander.curves.resize(curves_before);
+      expander.labels.resize(labels_before);
+      expander.stack.clear();
+      skips.model(
+          e.kind, e.layer, e.line,
+          "expands to more than " + std::to_string(options.max_segments) + " curves (nested arrays?)");
+      continue;
+    }
+    if (!e.block.empty() && !drawing.blocks.count(e.block)) {
+      skips.model(e.kind, e.layer, e.line, "block '" + e.block + "' is not defined");
+      continue;
+    }
+    tops.push_back(&e);
+    ++report.entities_read;
+    ++report.entities_by_layer[e.layer][e.kind];
+  }
+  report.blocks_expanded = expander.expanded;
+  for (const auto& [block, n] : expander.missing_blocks)
+    if (drawing.blocks.count(block) == 0)
+      report.warnings.push_back(plural(n, n == 1 ? "reference" : "references") + " to undefined block '" +
+                                block + "'");
+  for (const auto& [block, n] : expander.cycles)
+    report.warnings.push_back("block '" + block + "' contains itself (or nests deeper than " +
+                              std::to_string(kMaxBlockDepth) + " levels): not expanded there");
+  for (const auto& [block, n] : expander.external_blocks)
+    report.warnings.push_back("block '" + block +
+                              "' is an external reference (xref): its drawing is not in this file");
+
+  // Stage 4
+  choose_units(options, header.insunits, expander.curves, &report);
+  const double scale = metres_per_unit(report.units);
+  const double tolerance = options.chord_tolerance_m / scale;
+
+  // Stage 5
+  std::vector<Chain> chains;
+  chains.reserve(expander.curves.size());
+  std::map<int, Box> boxes;
+  for (const PlacedCurve& p : expander.curves) {
+    if (!wanted(p.layer)) continue;
+    Chain c{{}, false, p.curve->whole, p.layer, p.top, p.solid_fill};
+    c.points = tessellate(*p.curve, p.world_from_curve, tolerance, &c.closed, &report.arcs_tessellated);
+    if (c.points.empty() || !std::all_of(c.points.begin(), c.points.end(),
+                                         [](const Eigen::Vector2d& q) { return q.allFinite(); }))
+      continue;
+    if (c.points.size() < 2 && !c.closed) continue;
+    Box& b = boxes[p.top];
+    for (const auto& q : c.points) b.add(q);
+    chains.push_back(std::move(c));
+  }
+  std::map<int, Box> label_boxes;
+  for (const PlacedLabel& l : expander.labels)
+    if (!boxes.count(l.top)) label_boxes[l.top].add(l.position);
+  std::map<int, Box> all_boxes = boxes;
+  all_boxes.insert(label_boxes.begin(), label_boxes.end());
+  const std::set<int> strays = find_strays(all_boxes);
+  report.stray_entities = static_cast<int>(strays.size());
+  const bool drop_strays = !options.keep_stray && !strays.empty();
+  for (int top : strays) {
+    const DxfEntity& e = *tops[static_cast<std::size_t>(top)];
+    if (drop_strays) {
+      --report.entities_read;
+      if (--report.entities_by_layer[e.layer][e.kind] == 0) report.entities_by_layer[e.layer].erase(e.kind);
+      if (report.entities_by_layer[e.layer].empty()) report.entities_by_layer.erase(e.layer);
+      skips.model(e.kind, e.layer, e.line, "far from the rest of the drawing (stray)");
+    }
+  }
+  if (!strays.empty())
+    report.warnings.push_back(std::to_string(strays.size()) +
+                              (strays.size() == 1 ? " entity lies" : " entities lie") +
+                              " far from the rest of the drawing" +
+                              (drop_strays ? ": left out (keep_stray keeps them)" : ": kept"));
+  Box extents;
+  for (const Chain& c : chains)
+    if (!drop_strays || !strays.count(c.top))
+      for (const auto& q : c.points) extents.add(q);
+  if (extents.valid()) {
+    report.drawing_extents.min = extents.min;
+    report.drawing_extents.max = extents.max;
+    report.drawing_extents.valid = true;
+    const Eigen::Vector2d centre_m = 0.5 * (extents.min + extents.max) * scale;
+    if (centre_m.norm() > options.recentre_beyond_m) {
+      report.origin_m = centre_m.array().round().matrix();
+      report.warnings.push_back("the drawing lies " +
+                                std::to_string(static_cast<long long>(centre_m.norm())) +
+                                " m from the DXF origin: re-centred (the offset is kept with the plan)");
+    }
+  }
 
   FloorPlan plan;
   plan.source_file = name;
-  plan.units = units;
+  plan.units = report.units;
   plan.metres_per_unit = scale;
-  std::map<std::string, PlanLayer> layers = collector.layers;
+  plan.dxf_origin_m = report.origin_m;
+  auto to_plan = [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(p * scale - report.origin_m); };
+
+  std::map<std::string, PlanLayer> layers = drawing.layers;
   auto touch_layer = [&](const std::string& l) -> PlanLayer& {
     PlanLayer& layer = layers[l];
-    layer.name = l;
+    if (layer.name.empty()) layer.name = l;
     return layer;
   };
-  auto to_metres = [&](const Eigen::Vector2d& p, const std::string& what) {
-    const Eigen::Vector2d m = p * scale;
-    if (!m.allFinite() || m.cwiseAbs().maxCoeff() > options.max_coordinate_m) {
-      std::ostringstream msg;
-      msg << "absurd coordinate (" << p.x() << ", " << p.y() << ") " << units << " in " << what
-          << " (beyond " << options.max_coordinate_m << " m)";
-      throw file_error(name, msg.str());
-    }
-    return m;
-  };
+  std::map<std::string, int> solid_fill_outlines;
   std::vector<PlanSegment> raw_segments;
-  for (const auto& p : expander.polylines) {
-    ++touch_layer(p.layer).entity_count;
-    if (!wanted(p.layer)) {
-      ++report.entities_skipped;
-      continue;
-    }
+  std::set<std::pair<int, std::string>> counted;  // one count per entity and layer
+  for (const Chain& c : chains) {
+    if (drop_strays && strays.count(c.top)) continue;
+    if (counted.insert({c.top, c.layer}).second) ++touch_layer(c.layer).entity_count;
     std::vector<Eigen::Vector2d> pts;
-    for (const auto& q : p.points) pts.push_back(to_metres(q, "layer '" + p.layer + "'"));
+    pts.reserve(c.points.size());
+    for (const auto& q : c.points) pts.push_back(to_plan(q));
     const std::size_t n = pts.size();
-    if (n < 2) continue;
-    const std::size_t spans = p.closed && n > 2 ? n : n - 1;
-    for (std::size_t i = 0; i < spans; ++i) {
-      PlanSegment s;
-      s.a = pts[i];
-      s.b = pts[(i + 1) % n];
-      s.layer = p.layer;
-      raw_segments.push_back(s);
+    const std::size_t spans = c.closed && n > 2 ? n : n - 1;
+    for (std::size_t i = 0; i < spans; ++i)
+      raw_segments.push_back({pts[i], pts[(i + 1) % n], c.layer, false});
+    if (c.whole) plan.outlines.push_back({pts, c.layer, c.closed});
+    if (c.solid_fill && c.closed) {
+      ++solid_fill_outlines[c.layer];
+      ++report.hatch_outlines;
+    } else if (c.closed && (tops[static_cast<std::size_t>(c.top)]->kind == "HATCH")) {
+      ++report.hatch_outlines;
     }
-    if (p.whole) plan.outlines.push_back({pts, p.layer, p.closed});
   }
-  for (const auto& l : expander.labels) {
-    ++touch_layer(l.layer).entity_count;
-    if (!wanted(l.layer)) continue;
-    plan.labels.push_back({to_metres(l.position, "a label"), l.text, l.height * scale, l.layer});
+  for (const PlacedLabel& l : expander.labels) {
+    if (!wanted(l.layer) || (drop_strays && strays.count(l.top))) continue;
+    if (counted.insert({l.top, l.layer}).second) ++touch_layer(l.layer).entity_count;
+    plan.labels.push_back({to_plan(l.position), l.text, l.height * scale, l.layer});
   }
 
   CleanupCounts counts;
@@ -780,18 +703,35 @@ FloorPlan import_dxf_from_memory(const std::string& bytes, const std::string& na
   report.collinear_merged = counts.collinear_merged;
   report.intersections_split = counts.intersections_split;
 
-  for (auto& [layer_name, layer] : layers) {
-    if (!wanted(layer_name)) continue;
-    layer.occluder = occludes(layer_name);
-    plan.layers.push_back(layer);
+  for (auto& [layer_name, layer] : layers)
+    if (wanted(layer_name)) plan.layers.push_back(layer);
+  if (options.occluder_layers.empty()) {
+    for (const OccluderProposal& p : propose_occluder_layers(plan, solid_fill_outlines)) {
+      if (PlanLayer* l = plan.find_layer(p.layer)) l->occluder = p.occluder;
+      if (p.occluder) report.occluder_reasons[p.layer] = p.reason;
+    }
+  } else {
+    for (auto& l : plan.layers) {
+      l.occluder = std::find(options.occluder_layers.begin(), options.occluder_layers.end(), l.name) !=
+                   options.occluder_layers.end();
+      if (l.occluder) report.occluder_reasons[l.name] = "chosen by the author";
+    }
   }
   for (auto& s : plan.segments) {
     const PlanLayer* l = plan.find_layer(s.layer);
     s.occluder = l && l->occluder;
   }
+
   if (plan.segments.empty() && plan.labels.empty()) {
-    std::string what = "no usable geometry (no lines, arcs, polylines or blocks";
-    what += options.layers.empty() ? ")" : " on the chosen layers)";
+    std::string what =
+        std::string(report.binary ? "binary DXF with " : "") + "no 2-D plan geometry in model space";
+    if (!options.layers.empty()) what += " on the chosen layers";
+    if (!report.skipped_by_kind.empty()) {
+      std::map<std::string, int> reasons;
+      for (const auto& s : report.skipped) ++reasons[s.kind + " (" + s.why + ")"];
+      what += "; left out: " + join_counts(reasons);
+    }
+    if (!tags.warnings.empty()) what += "; " + tags.warnings.front();
     throw file_error(name, what);
   }
   if (report_out) *report_out = report;

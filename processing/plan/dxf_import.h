@@ -60,19 +60,19 @@ struct DxfSkippedEntity {
   std::size_t line = 0;  // line of its "0" tag in an ASCII file; byte offset in a binary one
   std::string kind;      // "CIRCLE", "DIMENSION", ...
   std::string layer;
-  std::string why;       // "radius 0", "paper space", "3-D only", "far from the drawing (stray)", ...
+  std::string why;  // "radius 0", "paper space", "3-D only", "far from the drawing (stray)", ...
 };
 
 struct DxfImportReport {
-  std::string version;    // $ACADVER ("AC1009" = R12, "AC1032" = R2018), "" when the header has none
-  bool binary = false;    // binary DXF
-  std::string codepage;   // $DWGCODEPAGE as written ("ANSI_1252"), "" when absent
-  std::string units;      // units used ("mm", ...)
-  std::string units_source;  // "override", "header", "inferred" or "assumed"
-  std::string units_reason;  // one sentence: why these units (inference evidence, header contradiction)
+  std::string version;             // $ACADVER ("AC1009" = R12, "AC1032" = R2018), "" when the header has none
+  bool binary = false;             // binary DXF
+  std::string codepage;            // $DWGCODEPAGE as written ("ANSI_1252"), "" when absent
+  std::string units;               // units used ("mm", ...)
+  std::string units_source;        // "override", "header", "inferred" or "assumed"
+  std::string units_reason;        // one sentence: why these units (inference evidence, header contradiction)
   bool units_from_header = false;  // the header's $INSUNITS was used
-  int entities_read = 0;     // model-space entities turned into geometry or labels (INSERTs count once)
-  int entities_skipped = 0;  // model-space entities left out (unsupported, invalid, filtered, stray)
+  int entities_read = 0;           // model-space entities turned into geometry or labels (INSERTs count once)
+  int entities_skipped = 0;        // model-space entities left out (unsupported, invalid, filtered, stray)
   std::map<std::string, int> skipped_by_kind;  // kind -> count, all reasons together
   std::vector<DxfSkippedEntity> skipped;       // the first max_listed_skips, with line and reason
   static constexpr std::size_t max_listed_skips = 500;
@@ -82,15 +82,15 @@ struct DxfImportReport {
   // (what another DXF reader reports for the same entities).
   PlanExtents drawing_extents;
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  // = FloorPlan::dxf_origin_m
-  int stray_entities = 0;  // left out (or kept, with keep_stray) as far from the drawing's bulk
-  int blocks_expanded = 0;   // block references expanded (all nesting levels, all array cells)
-  int arcs_tessellated = 0;  // arcs, circles, ellipses, splines and bulges turned into chords
-  int hatch_outlines = 0;    // closed boundaries taken from HATCH, SOLID and TRACE
+  int stray_entities = 0;     // left out (or kept, with keep_stray) as far from the drawing's bulk
+  int blocks_expanded = 0;    // block references expanded (all nesting levels, all array cells)
+  int arcs_tessellated = 0;   // arcs, circles, ellipses, splines and bulges turned into chords
+  int hatch_outlines = 0;     // closed boundaries taken from HATCH, SOLID and TRACE
   int snapped_endpoints = 0;  // endpoints moved onto a neighbour within the snap tolerance
   int zero_length_dropped = 0;
   int duplicates_dropped = 0;
-  int collinear_merged = 0;      // overlapping collinear segments merged
-  int intersections_split = 0;   // segments split where they cross or touch another
+  int collinear_merged = 0;                             // overlapping collinear segments merged
+  int intersections_split = 0;                          // segments split where they cross or touch another
   std::map<std::string, std::string> occluder_reasons;  // layer -> why it was proposed as blocking sight
   std::vector<std::string> warnings;
 };

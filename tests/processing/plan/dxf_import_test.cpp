@@ -1,4 +1,6 @@
 // DXF import against hand-computed geometry (files written by tests/data/dxf/make_dxf.py).
+#include "processing/plan/dxf_import.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include <sstream>
 
 #include "model/error.h"
-#include "processing/plan/dxf_import.h"
 
 namespace plenopath {
 namespace {
@@ -14,9 +15,11 @@ namespace {
 std::string data(const std::string& name) { return std::string(PLENOPATH_TEST_DATA_DIR) + "/dxf/" + name; }
 
 // True if the plan has a segment from a to b (either direction) within tol.
-bool has_segment(const FloorPlan& plan, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double tol = 1e-9) {
+bool has_segment(const FloorPlan& plan, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                 double tol = 1e-9) {
   for (const auto& s : plan.segments)
-    if (((s.a - a).norm() < tol && (s.b - b).norm() < tol) || ((s.a - b).norm() < tol && (s.b - a).norm() < tol))
+    if (((s.a - a).norm() < tol && (s.b - b).norm() < tol) ||
+        ((s.a - b).norm() < tol && (s.b - a).norm() < tol))
       return true;
   return false;
 }
@@ -88,7 +91,7 @@ TEST(DxfImport, LwpolylineBulgeIsAHalfCircle) {
       EXPECT_NEAR((p - Eigen::Vector2d(4, 1)).norm(), 1.0, 1e-9);  // on the arc
     }
   }
-  EXPECT_NEAR(max_x, 5.0, 0.005);                          // the bulge goes right, to x = 5
+  EXPECT_NEAR(max_x, 5.0, 0.005);  // the bulge goes right, to x = 5
   // Rectangle plus half disc; the inscribed chords (sagitta <= 5 mm) lose at most ~ (2/3) 5 mm x pi m.
   EXPECT_NEAR(0.5 * area2, 8.0 + M_PI / 2.0, 0.012);
   EXPECT_LE(0.5 * area2, 8.0 + M_PI / 2.0);
@@ -138,7 +141,8 @@ TEST(DxfImport, ArcCircleEllipseAndMirroredExtrusion) {
   EXPECT_GT(mirrored, 4);
   EXPECT_TRUE([&] {
     for (const auto& s : plan.segments)
-      if (s.layer == "MIRRORED" && ((s.a - Eigen::Vector2d(-6, 5)).norm() < 1e-9 || (s.b - Eigen::Vector2d(-6, 5)).norm() < 1e-9))
+      if (s.layer == "MIRRORED" &&
+          ((s.a - Eigen::Vector2d(-6, 5)).norm() < 1e-9 || (s.b - Eigen::Vector2d(-6, 5)).norm() < 1e-9))
         return true;
     return false;
   }());
@@ -213,15 +217,35 @@ void expect_error(const std::string& file, const std::string& fragment) {
 }
 
 TEST(DxfImport, BadFilesGiveClearErrors) {
-  expect_error("truncated.dxf", "truncated");
-  expect_error("bad_group_code.dxf", "line ");
-  expect_error("bad_number.dxf", "not a number");
-  expect_error("binary.dxf", "binary");
-  expect_error("no_geometry.dxf", "no usable geometry");
-  expect_error("absurd.dxf", "absurd");
+  expect_error("binary.dxf", "binary");  // the sentinel, then noise
+  expect_error("no_geometry.dxf", "no 2-D plan geometry");
+  expect_error("absurd.dxf", "out of range");  // its only line reaches 1e13 units: skipped, nothing left
   expect_error("absent.dxf", "cannot open");
   EXPECT_THROW(import_dxf_from_memory("", "empty.dxf"), Error);
   EXPECT_THROW(import_dxf_from_memory("0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n1e308\n", "x.dxf"), Error);
+}
+
+// Broken files import what is readable and say what was not (the whole-file guards are gone).
+TEST(DxfImport, BrokenFilesImportWhatIsReadable) {
+  DxfImportReport report;
+  const FloorPlan truncated = import_dxf(data("truncated.dxf"), {}, &report);  // cut in half
+  EXPECT_FALSE(truncated.segments.empty());
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.front().find("cut short"), std::string::npos) << report.warnings.front();
+
+  // A group code line reading "xx" in the first LINE: that line is lost, the other five are read.
+  const FloorPlan garbled = import_dxf(data("bad_group_code.dxf"), {}, &report);
+  EXPECT_EQ(report.entities_by_layer["WALLS"]["LINE"], 5);
+  EXPECT_EQ(report.entities_skipped, 1);
+
+  // "1O000" (a letter O) in the second LINE: that entity is skipped with its line and why.
+  const FloorPlan bad_number = import_dxf(data("bad_number.dxf"), {}, &report);
+  EXPECT_EQ(report.entities_by_layer["WALLS"]["LINE"], 5);
+  ASSERT_EQ(report.skipped.size(), 1u);
+  EXPECT_EQ(report.skipped[0].kind, "LINE");
+  EXPECT_EQ(report.skipped[0].layer, "WALLS");
+  EXPECT_GT(report.skipped[0].line, 0u);
+  EXPECT_NE(report.skipped[0].why.find("not a number"), std::string::npos) << report.skipped[0].why;
 }
 
 TEST(DxfImport, UnitTable) {
