@@ -38,7 +38,7 @@ Anchors read_anchors_file(const std::string& file) {
 }
 
 void write_anchors_file(const Anchors& anchors, const std::string& file) {
-  write_file_atomically(file, anchors_to_json(anchors).dump(1) + "\n", false);
+  write_file_atomically(file, anchors_to_json(anchors).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 }  // namespace plenopath

@@ -72,7 +72,7 @@ CameraPath read_path_file(const std::string& file) {
 }
 
 void write_path_file(const CameraPath& path, const std::string& file) {
-  write_file_atomically(file, path_to_json(path).dump(1) + "\n", false);
+  write_file_atomically(file, path_to_json(path).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 }  // namespace plenopath

@@ -317,7 +317,7 @@ Project load_project(const std::string& file) {
 
 void save_project(const Project& project, const std::string& file) {
   const std::string base = std::filesystem::absolute(file).parent_path().string();
-  write_file_atomically(file, project_to_json(project, base).dump(1) + "\n", true);
+  write_file_atomically(file, project_to_json(project, base).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", true);
 }
 
 }  // namespace plenopath

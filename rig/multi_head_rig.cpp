@@ -132,7 +132,7 @@ MultiHeadRig read_rig_file(const std::string& file) {
 
 void write_rig_file(const MultiHeadRig& rig, const std::string& file) {
   if (const std::string e = rig.check(); !e.empty()) throw file_error(file, e);
-  write_file_atomically(file, rig_to_json(rig).dump(1) + "\n", false);
+  write_file_atomically(file, rig_to_json(rig).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRig& rig, const PathFrame& pose,

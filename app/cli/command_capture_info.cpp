@@ -120,7 +120,7 @@ Command add_capture_info_command(CLI::App& parent) {
   return {sub, [o]() {
             const nlohmann::json summary = summarize(*o);
             if (o->json)
-              std::cout << summary.dump(2) << "\n";
+              std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             else
               print_text(summary);
             return kExitOk;

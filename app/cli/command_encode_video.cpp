@@ -49,7 +49,7 @@ Command add_encode_video_command(CLI::App& parent) {
                                             {"frames_failed", r.frames_failed},
                                             {"size", {source->width(), source->height()}}};
             if (o->json)
-              std::cout << summary.dump(2) << "\n";
+              std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             else
               std::cout << "Wrote " << r.frames_written << " frames to " << o->out << " (" << r.fourcc << ")"
                         << (r.frames_failed ? ", " + std::to_string(r.frames_failed) + " unreadable frames left out" : "")

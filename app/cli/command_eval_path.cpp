@@ -34,7 +34,7 @@ Command add_eval_path_command(CLI::App& parent) {
                                       {"truth_length_m", e.truth_length_m},
                                       {"scale_error_pct", e.scale_error_pct}};
             if (options->json) {
-              std::cout << j.dump(2) << "\n";
+              std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
               std::cout << std::fixed << std::setprecision(4) << e.frames_matched << " frames matched; heading RMS "
                         << e.rot_rms_deg << " deg; ATE " << e.ate_rms_m << " m RMS (" << e.ate_pct

@@ -53,7 +53,7 @@ Command add_export_command(CLI::App& parent) {
                                           {"package_bytes", report.package_bytes},
                                           {"files", report.files.size()},
                                           {"warnings", report.warnings}}
-                               .dump(2)
+                               .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                         << "\n";
             } else {
               std::cout << "Exported " << report.keyframes << " keyframes of " << report.capture_frames

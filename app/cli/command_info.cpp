@@ -96,7 +96,7 @@ Command add_info_command(CLI::App& parent) {
             const Project project = load_project(options->project);
             const nlohmann::json summary = summarize(project, options->project);
             if (options->json)
-              std::cout << summary.dump(2) << "\n";
+              std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             else
               print_text(summary);
             return kExitOk;

@@ -64,7 +64,7 @@ Command add_refine_command(CLI::App& parent) {
                                           {"iterations", report.iterations},
                                           {"gps_fixes", gps.size()},
                                           {"residuals", residuals}}
-                               .dump(2)
+                               .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                         << "\n";
             } else {
               std::cout << (o->preview ? "Warped" : "Refined") << " " << project.path.size() << " frames onto "

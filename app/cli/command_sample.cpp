@@ -180,7 +180,7 @@ int run(const Options& o, CLI::App* sub) {
                                {"frames", loss.photometric.frames}};
   if (o.save) out["saved"] = o.project;
   if (o.json) {
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return kExitOk;
   }
   std::cout << std::fixed << std::setprecision(3) << "Method     " << keyframes.parameters.method << "\nKept       "

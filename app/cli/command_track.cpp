@@ -189,7 +189,7 @@ Command add_track_command(CLI::App& parent) {
                 {"anchor_residuals", residuals},
                 {"out", options->out}};
             if (options->json) {
-              std::cout << summary.dump(2) << "\n";
+              std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
               std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
                         << r.points << " points), path length " << std::fixed << std::setprecision(2)

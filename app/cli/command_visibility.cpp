@@ -56,7 +56,7 @@ Command add_visibility_command(CLI::App& parent) {
               out["polygon"] = polygon;
               if (options->samples > 0) out["radial_m"] = index.radial_function(p, options->samples);
               if (options->json) {
-                std::cout << out.dump(2) << "\n";
+                std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
               } else {
                 std::cout << std::fixed << std::setprecision(3) << "Point     (" << p.x() << ", " << p.y() << "): "
                           << to_string(e.status) << "\nEnvelope  " << e.area << " m^2, " << e.polygon.size()
@@ -83,7 +83,7 @@ Command add_visibility_command(CLI::App& parent) {
             out["cells"] = cell_list;
             out["critical_lines"] = cells.critical_lines.size();
             if (options->json) {
-              std::cout << out.dump(2) << "\n";
+              std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
               std::cout << std::fixed << std::setprecision(3) << "Path      " << camera_path.size() << " frames, "
                         << camera_path.length() << " m\nEvents    " << cells.events.size() << "\nCells     "

@@ -289,14 +289,14 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
 
   report_progress(0.9, "tour description");
   const nlohmann::json tour = make_tour_json(project, images, media, full_width, preview_width);
-  package.add("tour.json", tour.dump(1) + "\n");
+  package.add("tour.json", tour.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   // The same data as a script: browsers refuse fetch() of file:// URLs, but load scripts.
-  package.add("tour.js", "window.PLENOPATH_TOUR = " + tour.dump() + ";\n");
+  package.add("tour.js", "window.PLENOPATH_TOUR = " + tour.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + ";\n");
   package.add("plan.svg", plan_svg(project.plan));
   for (const EmbeddedFile& f : player_assets())
     package.add(f.name, std::string(reinterpret_cast<const char*>(f.data), f.size));
-  if (options.pannellum) package.add("pannellum.json", pannellum_config(project, images).dump(1) + "\n");
-  if (options.geojson) package.add("path.geojson", path_geojson(project).dump(1) + "\n");
+  if (options.pannellum) package.add("pannellum.json", pannellum_config(project, images).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  if (options.geojson) package.add("path.geojson", path_geojson(project).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 
   report_progress(0.95, "writing package");
   for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);
