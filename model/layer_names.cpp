@@ -681,4 +681,17 @@ int occluder_vote_from_name(const std::string& layer_name, std::string* reason) 
   return say(0, "the name says nothing");
 }
 
+bool name_mentions_occluder(const std::string& layer_name) {
+  std::string name = own_part(layer_name);
+  if (name.empty() || name == "0") return false;
+  int vote = 0;
+  std::string why;
+  if (name.size() > 8) name[8] = 'E';  // ISO 13567: the element, whatever the presentation (H: hatching)
+  if (iso13567_vote(name, &vote, &why)) return vote > 0;
+  for (const std::string& word : words_of(name))
+    for (const Term* t : terms_in_word(word))
+      if (t->vote > 0) return true;
+  return false;
+}
+
 }  // namespace plenopath

@@ -12,4 +12,8 @@ namespace plenopath {
 // `reason`, when given, gets a short phrase ("AIA wall layer", "German 'Wand'").
 int occluder_vote_from_name(const std::string& layer_name, std::string* reason = nullptr);
 
+// Whether the name speaks of walls, columns or structure at all, even where other words outvote them
+// ("A-WALL-PATT", "Wandschraffur", "A-21----H-"): a solid fill on such a layer is the wall itself.
+bool name_mentions_occluder(const std::string& layer_name);
+
 }  // namespace plenopath

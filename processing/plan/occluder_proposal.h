@@ -2,6 +2,13 @@
 // Which layers block sight, proposed for the author to confirm: layer names first (model/layer_names.h);
 // when no layer's name says "wall", the geometry: parallel line pairs 0.05-0.6 m apart (walls drawn as two
 // lines), small closed outlines (columns), solid-filled regions (hatched walls and columns).
+// A name that votes no is never proposed, with one exception: a wall pattern layer ("A-WALL-PATT",
+// "Wandschraffur") whose solid fills are wall- or column-shaped, for plans that draw walls only as poche.
+// When no name and no geometry finds walls (single-line plans), the layer holding most of the lines (at
+// least half, not text or a hatch pattern) is proposed, saying so.
+//
+// Input: `plan` as the importer builds it: segments after clean-up (split and snapped, so outline edges
+// are matched geometrically, within 2 mm), closed outlines kept whole, labels; all in metres.
 #include <map>
 #include <string>
 #include <vector>

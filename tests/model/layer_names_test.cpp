@@ -267,6 +267,13 @@ TEST(LayerNames, OddBytesAreSafe) {
   EXPECT_EQ(occluder_vote_from_name(std::string("A-WALL\x01", 7)), 1);
 }
 
+TEST(LayerNames, MentionsOfWallsUnderAPattern) {
+  for (const char* name : {"A-WALL-PATT", "Wandschraffur", "A-21----H-", "墙体填充", "WALL-HATCH", "A-WALL"})
+    EXPECT_TRUE(name_mentions_occluder(name)) << name;
+  for (const char* name : {"A-ANNO-PATT", "HATCH", "0", "A-31----H-", "Schraffur", "COLOR"})
+    EXPECT_FALSE(name_mentions_occluder(name)) << name;
+}
+
 TEST(LayerNames, GuessIsTheVote) {
   for (const char* name : {"A-WALL", "Wand (neu)", "墙", "ARCH$0$A-WALL", "A-21----E-"})
     EXPECT_TRUE(guess_layer_is_occluder(name)) << name;
