@@ -70,8 +70,9 @@ struct FloorPlan {
 };
 bool operator==(const FloorPlan& l, const FloorPlan& r);
 
-// Default guess of which layers block sight: names with WALL, COL or STRUCT (any case), unless they also
-// look like furniture, doors, text or annotation.
+// Default guess of which layers block sight: the name votes +1 in occluder_vote_from_name()
+// (model/layer_names.h): walls, columns, structure in the usual conventions and languages, unless the name
+// also says doors, windows, furniture, text, dimensions or hatch.
 bool guess_layer_is_occluder(const std::string& layer_name);
 
 }  // namespace plenopath

@@ -377,20 +377,38 @@ UnitsEvidence evidence_of(const std::vector<PlacedCurve>& curves) {
     const DxfCurve& c = *p.curve;
     const double s = Expander::xy_scale(p.world_from_curve);
     auto xy = [&p](const Eigen::Vector3d& q) { return Eigen::Vector2d((p.world_from_curve * q).head<2>()); };
+    const bool mirrored = p.world_from_curve.linear().topLeftCorner<2, 2>().determinant() < 0.0;
     if (c.kind == DxfCurve::Kind::arc) {
-      arcs.push_back({xy(c.centre), std::abs(c.radius) * s, std::abs(c.sweep)});
+      // The arc's ends in the world; a mirroring transform turns the sweep around, so the other end starts
+      // it.
+      const Eigen::Vector2d centre = xy(c.centre);
+      const double a0 = c.start, a1 = c.start + c.sweep;
+      const Eigen::Vector2d e0 =
+          xy(c.centre + std::abs(c.radius) * Eigen::Vector3d(std::cos(a0), std::sin(a0), 0));
+      const Eigen::Vector2d e1 =
+          xy(c.centre + std::abs(c.radius) * Eigen::Vector3d(std::cos(a1), std::sin(a1), 0));
+      const Eigen::Vector2d start = (mirrored != (c.sweep < 0)) ? e1 : e0;
+      arcs.push_back({centre, std::abs(c.radius) * s, std::abs(c.sweep),
+                      std::atan2(start.y() - centre.y(), start.x() - centre.x())});
     } else if (c.kind == DxfCurve::Kind::polyline && c.widths.empty()) {
       const std::size_t n = c.points.size();
       const std::size_t spans = c.closed ? n : (n > 0 ? n - 1 : 0);
       for (std::size_t i = 0; i < spans; ++i) {
-        const double bulge = i < c.bulges.size() ? c.bulges[i] : 0.0;
-        const Eigen::Vector2d a = xy(c.points[i]), b = xy(c.points[(i + 1) % n]);
+        double bulge = i < c.bulges.size() ? c.bulges[i] : 0.0;
+        Eigen::Vector2d a = xy(c.points[i]), b = xy(c.points[(i + 1) % n]);
         if (std::abs(bulge) < 1e-9) {
           segments.push_back({a, b});
-        } else if (std::isfinite(bulge)) {  // a bulged span: an arc of this radius and sweep
-          const double sweep = 4.0 * std::atan(std::abs(bulge));
+        } else if (std::isfinite(
+                       bulge)) {  // a bulged span: an arc from a to b, counter-clockwise if positive
+          if (mirrored) bulge = -bulge;
+          if (bulge < 0) std::swap(a, b), bulge = -bulge;
+          const double sweep = 4.0 * std::atan(bulge);
           const double chord = (b - a).norm();
-          if (chord > 0.0) arcs.push_back({0.5 * (a + b), chord / (2.0 * std::sin(sweep / 2.0)), sweep});
+          if (!(chord > 0.0)) continue;
+          const double radius = chord / (2.0 * std::sin(sweep / 2.0));
+          const Eigen::Vector2d dir = (b - a) / chord, left(-dir.y(), dir.x());
+          const Eigen::Vector2d centre = 0.5 * (a + b) + radius * std::cos(sweep / 2.0) * left;
+          arcs.push_back({centre, radius, sweep, std::atan2(a.y() - centre.y(), a.x() - centre.x())});
         }
       }
     }
@@ -418,8 +436,17 @@ void choose_units(const DxfImportOptions& options, int insunits, const std::vect
                              (why.empty() ? std::string() : ": " + why);
       return;
     }
+    // Overrule the header only on strong evidence: doors (the most telling cue) and a confident guess;
+    // wall gaps or the size alone are not enough, since many drawings are not floor plans.
     const UnitsInference inferred = infer_units(evidence);
-    if (!inferred.units.empty() && inferred.units != header_units) {
+    bool strong = false;
+    if (!inferred.units.empty() && (evidence.door_leaves >= 2 || evidence.door_swing_radii.size() >= 3)) {
+      std::vector<double> radii = evidence.door_swing_radii;
+      std::nth_element(radii.begin(), radii.begin() + static_cast<long>(radii.size() / 2), radii.end());
+      const double door_m = radii[radii.size() / 2] * metres_per_unit(inferred.units);
+      strong = door_m >= 0.6 && door_m <= 1.1;  // the doors come out door-sized in the inferred units
+    }
+    if (strong && !inferred.units.empty() && inferred.units != header_units) {
       report->units = inferred.units;
       report->units_source = "inferred";
       report->units_reason = "the header says " + header_units + " ($INSUNITS " + std::to_string(insunits) +
@@ -430,7 +457,9 @@ void choose_units(const DxfImportOptions& options, int insunits, const std::vect
     report->units = header_units;
     report->units_source = "header";
     report->units_from_header = true;
-    report->units_reason = "$INSUNITS " + std::to_string(insunits) + " (" + header_units + ")";
+    report->units_reason =
+        "$INSUNITS " + std::to_string(insunits) + " (" + header_units + "), kept although " + why;
+    report->warnings.push_back("units: " + report->units_reason);
     return;
   }
   const UnitsInference inferred = infer_units(evidence);
