@@ -10,7 +10,7 @@ packages=(
   libopencv-dev libeigen3-dev libcgal-dev libceres-dev libgeographiclib-dev libdxflib-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth x11-utils imagemagick
-  python3 python3-jsonschema python3-ezdxf povray libarchive-dev libexpat1-dev chromium fonts-dejavu-core
+  python3 python3-jsonschema python3-ezdxf povray chromium fonts-dejavu-core fonts-wqy-microhei
 )
 
 missing=()

@@ -479,7 +479,7 @@ void choose_units(const DxfImportOptions& options, int insunits, const std::vect
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Stage 5: chords, strays.
+// Strays.
 
 struct Chain {
   std::vector<Eigen::Vector2d> points;  // drawing units
@@ -624,32 +624,20 @@ FloorPlan import_dxf_from_memory(const std::string& bytes, const std::string& na
     report.warnings.push_back("block '" + block +
                               "' is an external reference (xref): its drawing is not in this file");
 
-  // Stage 4
-  choose_units(options, header.insunits, expander.curves, &report);
-  const double scale = metres_per_unit(report.units);
-  const double tolerance = options.chord_tolerance_m / scale;
-
-  // Stage 5
-  std::vector<Chain> chains;
-  chains.reserve(expander.curves.size());
-  std::map<int, Box> boxes;
-  for (const PlacedCurve& p : expander.curves) {
-    if (!wanted(p.layer)) continue;
-    Chain c{{}, false, p.curve->whole, p.layer, p.top, p.solid_fill};
-    c.points = tessellate(*p.curve, p.world_from_curve, tolerance, &c.closed, &report.arcs_tessellated);
-    if (c.points.empty() || !std::all_of(c.points.begin(), c.points.end(),
-                                         [](const Eigen::Vector2d& q) { return q.allFinite(); }))
-      continue;
-    if (c.points.size() < 2 && !c.closed) continue;
-    Box& b = boxes[p.top];
-    for (const auto& q : c.points) b.add(q);
-    chains.push_back(std::move(c));
+  // Strays first, from coarse chords (a box per model-space entity needs no tolerance), so that neither the
+  // units nor the extents see a title block or a point at 1e7.
+  std::map<int, Box> all_boxes;
+  {
+    int ignored = 0;
+    for (const PlacedCurve& p : expander.curves) {
+      if (!wanted(p.layer)) continue;
+      bool closed = false;
+      for (const auto& q : tessellate(*p.curve, p.world_from_curve, 1e300, &closed, &ignored))
+        if (q.allFinite()) all_boxes[p.top].add(q);
+    }
+    for (const PlacedLabel& l : expander.labels)
+      if (!all_boxes.count(l.top) && l.position.allFinite()) all_boxes[l.top].add(l.position);
   }
-  std::map<int, Box> label_boxes;
-  for (const PlacedLabel& l : expander.labels)
-    if (!boxes.count(l.top)) label_boxes[l.top].add(l.position);
-  std::map<int, Box> all_boxes = boxes;
-  all_boxes.insert(label_boxes.begin(), label_boxes.end());
   const std::set<int> strays = find_strays(all_boxes);
   report.stray_entities = static_cast<int>(strays.size());
   const bool drop_strays = !options.keep_stray && !strays.empty();
@@ -667,15 +655,44 @@ FloorPlan import_dxf_from_memory(const std::string& bytes, const std::string& na
                               (strays.size() == 1 ? " entity lies" : " entities lie") +
                               " far from the rest of the drawing" +
                               (drop_strays ? ": left out (keep_stray keeps them)" : ": kept"));
-  Box extents;
-  for (const Chain& c : chains)
-    if (!drop_strays || !strays.count(c.top))
-      for (const auto& q : c.points) extents.add(q);
+
+  // Stage 4: units, from the entities that are not strays.
+  std::vector<PlacedCurve> bulk_curves;
+  bulk_curves.reserve(expander.curves.size());
+  for (const PlacedCurve& p : expander.curves)
+    if (!strays.count(p.top)) bulk_curves.push_back(p);
+  choose_units(options, header.insunits, bulk_curves, &report);
+  const double scale = metres_per_unit(report.units);
+  const double tolerance = options.chord_tolerance_m / scale;
+
+  // Stage 5: chords.
+  std::vector<Chain> chains;
+  chains.reserve(expander.curves.size());
+  for (const PlacedCurve& p : expander.curves) {
+    if (!wanted(p.layer)) continue;
+    Chain c{{}, false, p.curve->whole, p.layer, p.top, p.solid_fill};
+    c.points = tessellate(*p.curve, p.world_from_curve, tolerance, &c.closed, &report.arcs_tessellated);
+    if (c.points.empty() || !std::all_of(c.points.begin(), c.points.end(),
+                                         [](const Eigen::Vector2d& q) { return q.allFinite(); }))
+      continue;
+    if (c.points.size() < 2 && !c.closed) continue;
+    chains.push_back(std::move(c));
+  }
+  Box extents, bulk;  // what is imported; the building without its strays (which decides the re-centring)
+  for (const Chain& c : chains) {
+    const bool stray = strays.count(c.top) > 0;
+    for (const auto& q : c.points) {
+      if (!drop_strays || !stray) extents.add(q);
+      if (!stray) bulk.add(q);
+    }
+  }
   if (extents.valid()) {
     report.drawing_extents.min = extents.min;
     report.drawing_extents.max = extents.max;
     report.drawing_extents.valid = true;
-    const Eigen::Vector2d centre_m = 0.5 * (extents.min + extents.max) * scale;
+  }
+  if (bulk.valid()) {
+    const Eigen::Vector2d centre_m = 0.5 * (bulk.min + bulk.max) * scale;
     if (centre_m.norm() > options.recentre_beyond_m) {
       report.origin_m = centre_m.array().round().matrix();
       report.warnings.push_back("the drawing lies " +

@@ -20,9 +20,12 @@ PY
 python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['units']=='cm' and s['segments']==1, s" "$tmp/info2.json" \
   || fail "plan-info --units/--layers"
 
-"$cli" plan-info "$data/dxf/truncated.dxf" 2> "$tmp/err.txt"; code=$?
-[[ $code -eq 1 ]] || fail "truncated: exit $code"
-grep -q "truncated.dxf" "$tmp/err.txt" || fail "truncated message: $(cat "$tmp/err.txt")"
+# A file cut in half imports what it holds and says so; noise after a binary sentinel is refused by name.
+"$cli" plan-info "$data/dxf/truncated.dxf" > "$tmp/out.txt" 2> "$tmp/err.txt" || fail "truncated: exit $?"
+grep -q "cut short" "$tmp/out.txt" || fail "truncated warning: $(cat "$tmp/out.txt")"
+"$cli" plan-info "$data/dxf/binary.dxf" 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "binary noise: exit $code"
+grep -q "binary.dxf" "$tmp/err.txt" || fail "binary noise message: $(cat "$tmp/err.txt")"
 
 # The 10 m x 10 m room seen from anywhere inside: 100 m^2.
 "$cli" visibility --plan "$data/dxf/lines_mm.dxf" --point 3,4 --samples 4 --json > "$tmp/point.json" || fail "point exit $?"
