@@ -19,7 +19,8 @@
 
 namespace plenopath::widgets {
 
-TimelineStrip::TimelineStrip(ProjectDocument& document, QWidget* parent) : QWidget(parent), document_(document) {
+TimelineStrip::TimelineStrip(ProjectDocument& document, QWidget* parent)
+    : QWidget(parent), document_(document) {
   setMinimumHeight(80);
   setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Preferred);
   connect(&document_, &ProjectDocument::changed, this, [this] { update(); });
@@ -99,14 +100,18 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
   }
   // Per-frame curves, each scaled to its maximum.
   QVector<QPair<QString, QColor>> legend;
-  auto plot = [&](const QVector<double>& series, const QColor& colour, const QString& name, const QString& unit) {
+  auto plot = [&](const QVector<double>& series, const QColor& colour, const QString& name,
+                  const QString& unit) {
     if (series.size() != n) return;
     const double top = *std::max_element(series.begin(), series.end());
     if (!(top > 0)) return;
     QPainterPath curve;
     for (int i = 0; i < n; ++i) {
       const QPointF q(x_of(i), r.bottom() - 8 - (r.height() - 14) * series[i] / top);
-      if (i == 0) curve.moveTo(q); else curve.lineTo(q);
+      if (i == 0)
+        curve.moveTo(q);
+      else
+        curve.lineTo(q);
     }
     painter.setPen(QPen(colour, 1.6));
     painter.setBrush(Qt::NoBrush);
@@ -196,7 +201,8 @@ TimelinePanel::TimelinePanel(ProjectDocument& document, QWidget* parent)
 void TimelinePanel::set_playing(bool playing) {
   if (playing) {
     if (document_.current_position() + 1 >= document_.frame_count()) document_.set_current_position(0);
-    const double rate = document_.project().capture.frame_rate > 0 ? document_.project().capture.frame_rate : 30.0;
+    const double rate =
+        document_.project().capture.frame_rate > 0 ? document_.project().capture.frame_rate : 30.0;
     play_timer_->start(static_cast<int>(std::lround(1000.0 / rate)));
   } else {
     play_timer_->stop();
@@ -207,6 +213,8 @@ void TimelinePanel::set_playing(bool playing) {
 }
 
 bool TimelinePanel::playing() const { return play_timer_->isActive(); }
+
+int TimelinePanel::play_interval_ms() const { return play_timer_->interval(); }
 
 QString TimelinePanel::info_text() const { return info_->text(); }
 
@@ -237,10 +245,11 @@ void TimelinePanel::update_controls() {
   }
   if (!reason.isEmpty()) text += tr(" · this frame: %1").arg(reason);
   info_->setText(text);
-  info_->setToolTip(reason.isEmpty() ? QString()
-                                     : tr("The tracker flagged this frame: %1. Its pose may be interpolated or "
-                                          "less certain; an anchor (Ctrl+drag on the map) can pin it.")
-                                           .arg(reason));
+  info_->setToolTip(reason.isEmpty()
+                        ? QString()
+                        : tr("The tracker flagged this frame: %1. Its pose may be interpolated or "
+                             "less certain; an anchor (Ctrl+drag on the map) can pin it.")
+                              .arg(reason));
 }
 
 }  // namespace plenopath::widgets

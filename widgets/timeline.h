@@ -45,6 +45,7 @@ class TimelinePanel : public QWidget {
   explicit TimelinePanel(ProjectDocument& document, QWidget* parent = nullptr);
   void set_playing(bool playing);
   bool playing() const;
+  int play_interval_ms() const;  // the timer's period while playing: one frame at the capture's rate
   TimelineStrip* strip() const { return strip_; }
   QString info_text() const;  // the line beside the frame box (for tests)
 
