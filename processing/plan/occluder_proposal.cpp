@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "model/layer_names.h"
+#include "processing/plan/grid_key.h"
 #include "processing/plan/parallel_pairs.h"
 #include "processing/segment_grid.h"
 
@@ -133,7 +134,7 @@ class SmallOutlineIndex {
 
  private:
   static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(v / kSmallOutline)); }
-  static std::int64_t key(std::int64_t cx, std::int64_t cy) { return (cx << 32) ^ (cy & 0xffffffffLL); }
+  static std::int64_t key(std::int64_t cx, std::int64_t cy) { return grid_cell_key(cx, cy); }
   std::vector<const OutlineShape*> shapes_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
@@ -190,13 +191,13 @@ GeometryVerdict judge_geometry(const FloorPlan& plan, const LayerGeometry& g, in
       v.column_lo = std::min(v.column_lo, c->extent);
       v.column_hi = std::max(v.column_hi, c->extent);
       v.column_perimeter += c->perimeter;
-      ++bins[(bin(c->extent) << 32) ^ (bin(c->short_side) & 0xffffffffLL)];
+      ++bins[grid_cell_key(bin(c->extent), bin(c->short_side))];
     }
     for (const OutlineShape* c : columns) {
       int same = 0;
       for (int de = -1; de <= 1; ++de)
         for (int ds = -1; ds <= 1; ++ds) {
-          auto it = bins.find(((bin(c->extent) + de) << 32) ^ ((bin(c->short_side) + ds) & 0xffffffffLL));
+          auto it = bins.find(grid_cell_key(bin(c->extent) + de, bin(c->short_side) + ds));
           if (it != bins.end()) same += it->second;
         }
       v.column_group = std::max(v.column_group, same);

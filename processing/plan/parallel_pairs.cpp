@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "model/error.h"
+#include "processing/plan/grid_key.h"
 
 namespace plenopath {
 
@@ -36,7 +37,7 @@ namespace {
 // out.
 constexpr double max_cell_coordinate = 1e9;
 
-std::int64_t key_of(std::int64_t cx, std::int64_t cy) { return (cx << 32) ^ (cy & 0xffffffffLL); }
+std::int64_t key_of(std::int64_t cx, std::int64_t cy) { return grid_cell_key(cx, cy); }
 
 // Calls fn(cx, cy) for the cells the segment passes through, walking its major axis one column at a time.
 // Returns false (and calls nothing) when it spans more than max_cells cells or lies off the grid.

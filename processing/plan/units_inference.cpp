@@ -9,6 +9,7 @@
 
 #include "model/error.h"
 #include "processing/plan/dxf_import.h"
+#include "processing/plan/grid_key.h"
 #include "processing/plan/parallel_pairs.h"
 
 namespace plenopath {
@@ -133,7 +134,7 @@ void collect_door_swings(const std::vector<DrawingSegment>& segments, const std:
   const double cell = 0.1 * median(radii);
   constexpr double max_cell_coordinate = 1e9;
   auto cell_of = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
-  auto key = [](std::int64_t cx, std::int64_t cy) { return (cx << 32) ^ (cy & 0xffffffffLL); };
+  auto key = [](std::int64_t cx, std::int64_t cy) { return grid_cell_key(cx, cy); };
   auto on_grid = [&](const Eigen::Vector2d& p) {
     return p.allFinite() && std::abs(p.x() / cell) < max_cell_coordinate &&
            std::abs(p.y() / cell) < max_cell_coordinate;

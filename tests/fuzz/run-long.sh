@@ -11,5 +11,5 @@ exe="$build/tests/fuzz/fuzz_dxf_import"
 corpus="$build/fuzz-corpus/dxf"
 artifacts="$build/fuzz-artifacts/"
 mkdir -p "$corpus" "$artifacts"
-"$exe" "$corpus" "$here/../data/dxf" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+"$exe" "$corpus" "$here/../data/dxf" "$here/../data/dxf-ezdxf" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
   -artifact_prefix="$artifacts" -print_final_stats=1
