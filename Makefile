@@ -18,7 +18,7 @@ else
   WITH_DISPLAY :=
 endif
 
-.PHONY: all deps configure build run test bench format fuzz clean screenshot
+.PHONY: all deps configure build run test bench format format-check fuzz clean screenshot
 
 all: build
 
@@ -52,7 +52,11 @@ screenshot: build
 	@bash app/take-screenshot.sh $(BUILD_DIR) resources/screenshots/studio.png
 
 format:
-	@find app widgets model processing rig tests -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+	@git ls-files -z -- 'app/*.cpp' 'app/*.h' 'widgets/*.cpp' 'widgets/*.h' 'model/*.cpp' 'model/*.h' \
+	  'processing/*.cpp' 'processing/*.h' 'rig/*.cpp' 'rig/*.h' 'tests/*.cpp' 'tests/*.h' | xargs -0 clang-format -i
+
+format-check:
+	@bash cmake/check-format.sh
 
 clean:
 	rm -rf build build-sanitize build-fuzz build*.configure.log

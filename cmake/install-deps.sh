@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build ccache pkg-config clang libclang-rt-14-dev
+  build-essential cmake ninja-build ccache pkg-config clang clang-format libclang-rt-14-dev
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev
   libvtk9-qt-dev libvtk9-dev mpi-default-dev
   libopencv-dev libeigen3-dev libcgal-dev libceres-dev libgeographiclib-dev libdxflib-dev
