@@ -24,7 +24,8 @@ Anchors anchors_from_json(const JsonReader& r) {
     const JsonReader a = r.at(i);
     Anchor anchor;
     anchor.frame = a.integer("index");
-    if (!seen.insert(anchor.frame).second) a.at("index").fail("two anchors on frame " + std::to_string(anchor.frame));
+    if (!seen.insert(anchor.frame).second)
+      a.at("index").fail("two anchors on frame " + std::to_string(anchor.frame));
     anchor.position = {a.number("x"), a.number("y")};
     if (auto h = a.find("heading_deg")) anchor.heading = radians(h->number());
     anchors.push_back(anchor);
@@ -38,7 +39,9 @@ Anchors read_anchors_file(const std::string& file) {
 }
 
 void write_anchors_file(const Anchors& anchors, const std::string& file) {
-  write_file_atomically(file, anchors_to_json(anchors).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
+  write_file_atomically(
+      file, anchors_to_json(anchors).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n",
+      false);
 }
 
 }  // namespace plenopath

@@ -40,7 +40,8 @@ void write_file_atomically(const std::string& file, const std::string& contents,
   const fs::path temp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(rd() % 1000000));
 
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw file_error(file, "cannot create a temporary file in " + dir.string() + ": " + errno_text());
+  if (fd < 0)
+    throw file_error(file, "cannot create a temporary file in " + dir.string() + ": " + errno_text());
   try {
     write_all(fd, contents, file);
     if (::fsync(fd) != 0) throw file_error(file, "flush to disk failed: " + errno_text());

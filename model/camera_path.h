@@ -11,17 +11,17 @@ namespace plenopath {
 enum FrameFlag : std::uint32_t {
   kFrameOk = 0,
   kFrameTextureless = 1u << 0,
-  kFrameDuplicate = 1u << 1,     // the trolley stopped
-  kFrameJump = 1u << 2,          // sudden change the motion model rejects
-  kFrameMovingObjects = 1u << 3, // many tracks inconsistent with the static scene
-  kFrameBridged = 1u << 4,       // pose interpolated across a stretch the tracker could not solve
-  kFrameCorrupt = 1u << 5,       // the image could not be decoded
-  kFrameManual = 1u << 6,        // placed by the author
+  kFrameDuplicate = 1u << 1,      // the trolley stopped
+  kFrameJump = 1u << 2,           // sudden change the motion model rejects
+  kFrameMovingObjects = 1u << 3,  // many tracks inconsistent with the static scene
+  kFrameBridged = 1u << 4,        // pose interpolated across a stretch the tracker could not solve
+  kFrameCorrupt = 1u << 5,        // the image could not be decoded
+  kFrameManual = 1u << 6,         // placed by the author
 };
 
 struct PathFrame {
-  int index = 0;      // position in the capture
-  std::string file;   // frame file, relative to the path file's folder (may be empty for video)
+  int index = 0;     // position in the capture
+  std::string file;  // frame file, relative to the path file's folder (may be empty for video)
   double x = 0.0;
   double y = 0.0;
   double heading = 0.0;  // radians

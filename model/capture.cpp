@@ -8,9 +8,12 @@ namespace plenopath {
 
 const char* to_string(CaptureKind kind) {
   switch (kind) {
-    case CaptureKind::kNone: return "none";
-    case CaptureKind::kImageFolder: return "image_folder";
-    case CaptureKind::kVideo: return "video";
+    case CaptureKind::kNone:
+      return "none";
+    case CaptureKind::kImageFolder:
+      return "image_folder";
+    case CaptureKind::kVideo:
+      return "video";
   }
   return "none";
 }

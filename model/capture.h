@@ -23,14 +23,14 @@ struct Capture {
   int frame_count = 0;
   int width = 0;
   int height = 0;
-  double frame_rate = 30.0;               // frames per second, for playback and GPS matching
-  int first_frame = 0;                    // video: first decoded frame number
-  int stride = 1;                         // video/folder: keep every stride-th frame
-  std::vector<std::string> frame_names;   // image folder: file names relative to source, in capture order
-  std::string depth_folder;               // optional; depth maps matched to frames by name
-  std::vector<GpsSample> gps_track;       // optional
-  double gps_time_offset_s = 0.0;         // capture time of frame 0 in the GPS track's clock
-  double camera_height_m = 0.0;           // 0 = unknown
+  double frame_rate = 30.0;              // frames per second, for playback and GPS matching
+  int first_frame = 0;                   // video: first decoded frame number
+  int stride = 1;                        // video/folder: keep every stride-th frame
+  std::vector<std::string> frame_names;  // image folder: file names relative to source, in capture order
+  std::string depth_folder;              // optional; depth maps matched to frames by name
+  std::vector<GpsSample> gps_track;      // optional
+  double gps_time_offset_s = 0.0;        // capture time of frame 0 in the GPS track's clock
+  double camera_height_m = 0.0;          // 0 = unknown
 
   bool empty() const { return kind == CaptureKind::kNone; }
 };

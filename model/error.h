@@ -12,6 +12,8 @@ class Error : public std::runtime_error {
 };
 
 // "FILE: what" — the standard shape of a message about a file.
-inline Error file_error(const std::string& file, const std::string& what) { return Error(file + ": " + what); }
+inline Error file_error(const std::string& file, const std::string& what) {
+  return Error(file + ": " + what);
+}
 
 }  // namespace plenopath

@@ -6,7 +6,7 @@ namespace plenopath {
 
 struct GeoAnchor {
   bool valid = false;
-  double latitude_deg = 0.0;   // WGS84 position of plan_origin
+  double latitude_deg = 0.0;  // WGS84 position of plan_origin
   double longitude_deg = 0.0;
   double altitude_m = 0.0;
   double plan_rotation = 0.0;  // radians, CCW angle from east to the plan's +X

@@ -47,7 +47,8 @@ CameraPath path_from_json(const JsonReader& reader) {
     PathFrame frame;
     frame.index = f.integer("index");
     if (frame.index < 0) f.at("index").fail("frame index must be >= 0");
-    if (!seen.insert(frame.index).second) f.at("index").fail("duplicate frame index " + std::to_string(frame.index));
+    if (!seen.insert(frame.index).second)
+      f.at("index").fail("duplicate frame index " + std::to_string(frame.index));
     frame.file = f.string_or("file", "");
     frame.x = f.number("x") * scale;
     frame.y = f.number("y") * scale;
@@ -72,7 +73,8 @@ CameraPath read_path_file(const std::string& file) {
 }
 
 void write_path_file(const CameraPath& path, const std::string& file) {
-  write_file_atomically(file, path_to_json(path).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
+  write_file_atomically(
+      file, path_to_json(path).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 }  // namespace plenopath

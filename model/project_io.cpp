@@ -5,8 +5,8 @@
 
 #include "model/anchors_io.h"
 #include "model/atomic_file.h"
-#include "model/hotspot_io.h"
 #include "model/error.h"
+#include "model/hotspot_io.h"
 #include "model/json_reader.h"
 #include "model/path_io.h"
 
@@ -26,7 +26,10 @@ Eigen::Vector2d read_vec2(const JsonReader& r) {
 json plan_to_json(const FloorPlan& plan, const std::string& base) {
   json layers = json::array(), segments = json::array(), outlines = json::array(), labels = json::array();
   for (const auto& l : plan.layers)
-    layers.push_back({{"name", l.name}, {"color", l.color}, {"visible", l.visible}, {"occluder", l.occluder},
+    layers.push_back({{"name", l.name},
+                      {"color", l.color},
+                      {"visible", l.visible},
+                      {"occluder", l.occluder},
                       {"entity_count", l.entity_count}});
   for (const auto& s : plan.segments)
     segments.push_back({{"a", vec2(s.a)}, {"b", vec2(s.b)}, {"layer", s.layer}, {"occluder", s.occluder}});
@@ -36,7 +39,8 @@ json plan_to_json(const FloorPlan& plan, const std::string& base) {
     outlines.push_back({{"points", points}, {"layer", o.layer}, {"closed", o.closed}});
   }
   for (const auto& l : plan.labels)
-    labels.push_back({{"position", vec2(l.position)}, {"text", l.text}, {"height", l.height}, {"layer", l.layer}});
+    labels.push_back(
+        {{"position", vec2(l.position)}, {"text", l.text}, {"height", l.height}, {"layer", l.layer}});
   return {{"source_file", path_relative_to(plan.source_file, base)},
           {"units", plan.units},
           {"metres_per_unit", plan.metres_per_unit},
@@ -89,7 +93,8 @@ FloorPlan plan_from_json(const JsonReader& r, const std::string& base) {
 json capture_to_json(const Capture& c, const std::string& base) {
   json gps = json::array();
   for (const auto& g : c.gps_track)
-    gps.push_back({{"t", g.time_s}, {"lat", g.latitude_deg}, {"lon", g.longitude_deg}, {"alt", g.altitude_m}});
+    gps.push_back(
+        {{"t", g.time_s}, {"lat", g.latitude_deg}, {"lon", g.longitude_deg}, {"alt", g.altitude_m}});
   return {{"kind", to_string(c.kind)},
           {"source", path_relative_to(c.source, base)},
           {"frame_count", c.frame_count},
@@ -140,8 +145,12 @@ json visibility_to_json(const VisibilityCells& v) {
   json events = json::array(), cells = json::array(), lines = json::array();
   for (const auto& e : v.events) events.push_back({{"frame", e.frame}, {"s", e.s}});
   for (const auto& c : v.cells)
-    cells.push_back({{"first_frame", c.first_frame}, {"last_frame", c.last_frame}, {"s_begin", c.s_begin},
-                     {"s_end", c.s_end}, {"length", c.length}, {"area_mid", c.area_mid},
+    cells.push_back({{"first_frame", c.first_frame},
+                     {"last_frame", c.last_frame},
+                     {"s_begin", c.s_begin},
+                     {"s_end", c.s_end},
+                     {"length", c.length},
+                     {"area_mid", c.area_mid},
                      {"area_mean", c.area_mean}});
   for (const auto& l : v.critical_lines) lines.push_back({vec2(l.a), vec2(l.b)});
   return {{"events", events}, {"cells", cells}, {"critical_lines", lines}};
@@ -173,8 +182,12 @@ json keyframes_to_json(const Keyframes& k) {
           {"rank", k.rank},
           {"pinned", k.pinned},
           {"parameters",
-           {{"method", p.method}, {"count", p.count}, {"ratio", p.ratio}, {"exponent", p.exponent},
-            {"transition_boost", p.transition_boost}, {"min_spacing_m", p.min_spacing_m},
+           {{"method", p.method},
+            {"count", p.count},
+            {"ratio", p.ratio},
+            {"exponent", p.exponent},
+            {"transition_boost", p.transition_boost},
+            {"min_spacing_m", p.min_spacing_m},
             {"max_spacing_m", p.max_spacing_m}}}};
 }
 
@@ -227,8 +240,12 @@ std::vector<Hotspot> hotspots_from_json(const JsonReader& r, const std::string& 
 }
 
 json geo_to_json(const GeoAnchor& g) {
-  return {{"valid", g.valid}, {"latitude_deg", g.latitude_deg}, {"longitude_deg", g.longitude_deg},
-          {"altitude_m", g.altitude_m}, {"plan_rotation_deg", degrees(g.plan_rotation)}, {"scale", g.scale},
+  return {{"valid", g.valid},
+          {"latitude_deg", g.latitude_deg},
+          {"longitude_deg", g.longitude_deg},
+          {"altitude_m", g.altitude_m},
+          {"plan_rotation_deg", degrees(g.plan_rotation)},
+          {"scale", g.scale},
           {"plan_origin", vec2(g.plan_origin)}};
 }
 
@@ -248,9 +265,14 @@ GeoAnchor geo_from_json(const JsonReader& r) {
 }
 
 json tour_to_json(const TourSettings& t) {
-  return {{"title", t.title}, {"description", t.description}, {"max_size", t.max_size},
-          {"preview_size", t.preview_size}, {"jpeg_quality", t.jpeg_quality}, {"start_frame", t.start_frame},
-          {"export_pannellum", t.export_pannellum}, {"export_geojson", t.export_geojson}};
+  return {{"title", t.title},
+          {"description", t.description},
+          {"max_size", t.max_size},
+          {"preview_size", t.preview_size},
+          {"jpeg_quality", t.jpeg_quality},
+          {"start_frame", t.start_frame},
+          {"export_pannellum", t.export_pannellum},
+          {"export_geojson", t.export_geojson}};
 }
 
 TourSettings tour_from_json(const JsonReader& r) {
@@ -317,7 +339,10 @@ Project load_project(const std::string& file) {
 
 void save_project(const Project& project, const std::string& file) {
   const std::string base = std::filesystem::absolute(file).parent_path().string();
-  write_file_atomically(file, project_to_json(project, base).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", true);
+  write_file_atomically(
+      file,
+      project_to_json(project, base).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n",
+      true);
 }
 
 }  // namespace plenopath

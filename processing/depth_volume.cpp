@@ -10,7 +10,8 @@ namespace plenopath {
 DepthVolume depth_volume(const cv::Mat& depth) {
   if (depth.empty()) throw Error("depth volume: the depth panorama is empty");
   if (depth.channels() != 1 || (depth.depth() != CV_32F && depth.depth() != CV_16U))
-    throw Error("depth volume: expected a one-channel CV_32F (metres) or CV_16U (millimetres) depth panorama");
+    throw Error(
+        "depth volume: expected a one-channel CV_32F (metres) or CV_16U (millimetres) depth panorama");
   DepthVolume out;
   const int w = depth.cols, h = depth.rows;
   double sum_d = 0.0, sum_d3 = 0.0;
@@ -40,12 +41,14 @@ DepthVolume depth_volume(const cv::Mat& depth) {
 }
 
 void VolumeChangeOptions::check() const {
-  if (!(log_ratio_threshold > 0.0)) throw Error("volume change options: log_ratio_threshold must be positive");
+  if (!(log_ratio_threshold > 0.0))
+    throw Error("volume change options: log_ratio_threshold must be positive");
   if (!(min_coverage >= 0.0 && min_coverage <= 1.0))
     throw Error("volume change options: min_coverage must be in [0, 1]");
 }
 
-std::vector<int> detect_volume_changes(const std::vector<DepthVolume>& volumes, const VolumeChangeOptions& options) {
+std::vector<int> detect_volume_changes(const std::vector<DepthVolume>& volumes,
+                                       const VolumeChangeOptions& options) {
   options.check();
   std::vector<int> changes;
   double reference = 0.0;

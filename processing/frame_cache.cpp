@@ -98,7 +98,7 @@ struct FrameCache::Impl {
   FrameCacheOptions options;
 
   mutable std::mutex mutex;
-  std::condition_variable work_ready;   // worker: something queued or stopping
+  std::condition_variable work_ready;     // worker: something queued or stopping
   std::condition_variable state_changed;  // a decode finished, or the worker went idle
   LruStore frames;
   LruStore thumbnails;

@@ -22,25 +22,25 @@ class FrameSource;
 struct FrameCacheOptions {
   std::size_t frame_bytes_bound = std::size_t(512) << 20;     // full frames held at most (bytes)
   std::size_t thumbnail_bytes_bound = std::size_t(64) << 20;  // thumbnails held at most (bytes)
-  int thumbnail_width = 256;   // thumbnails are at most this wide (pixels)
-  int prefetch_ahead = 6;      // frames decoded ahead of the play head, in the scrub direction
-  int prefetch_behind = 1;     // and behind it
+  int thumbnail_width = 256;                                  // thumbnails are at most this wide (pixels)
+  int prefetch_ahead = 6;           // frames decoded ahead of the play head, in the scrub direction
+  int prefetch_behind = 1;          // and behind it
   bool background_prefetch = true;  // false: no worker thread; prefetch() does nothing
-  void check() const;          // throws Error saying which field is wrong
+  void check() const;               // throws Error saying which field is wrong
 };
 
 struct FrameCacheStats {
-  std::size_t frame_bytes = 0;        // bytes of full frames held now
-  std::size_t peak_frame_bytes = 0;   // most ever held at once
+  std::size_t frame_bytes = 0;       // bytes of full frames held now
+  std::size_t peak_frame_bytes = 0;  // most ever held at once
   std::size_t thumbnail_bytes = 0;
   std::size_t peak_thumbnail_bytes = 0;
   int frames_held = 0;
   int thumbnails_held = 0;
-  long hits = 0;             // get() answered from memory
-  long misses = 0;           // get() had to decode
-  long evictions = 0;        // full frames dropped to stay under the bound
-  long prefetched = 0;       // frames decoded by the worker
-  long failed = 0;           // frames that could not be decoded (see failures())
+  long hits = 0;        // get() answered from memory
+  long misses = 0;      // get() had to decode
+  long evictions = 0;   // full frames dropped to stay under the bound
+  long prefetched = 0;  // frames decoded by the worker
+  long failed = 0;      // frames that could not be decoded (see failures())
 };
 
 class FrameCache {

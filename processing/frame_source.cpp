@@ -20,9 +20,11 @@ namespace fs = std::filesystem;
 namespace plenopath {
 
 void FrameSourceOptions::check() const {
-  if (first_frame < 0) throw Error("capture options: first_frame must be >= 0 (is " + std::to_string(first_frame) + ")");
+  if (first_frame < 0)
+    throw Error("capture options: first_frame must be >= 0 (is " + std::to_string(first_frame) + ")");
   if (last_frame < -1)
-    throw Error("capture options: last_frame must be >= 0, or -1 for the end (is " + std::to_string(last_frame) + ")");
+    throw Error("capture options: last_frame must be >= 0, or -1 for the end (is " +
+                std::to_string(last_frame) + ")");
   if (last_frame >= 0 && last_frame < first_frame)
     throw Error("capture options: last_frame " + std::to_string(last_frame) + " is before first_frame " +
                 std::to_string(first_frame));
@@ -37,7 +39,8 @@ void FrameSourceOptions::check() const {
 bool natural_less(const std::string& a, const std::string& b) {
   std::size_t i = 0, j = 0;
   while (i < a.size() && j < b.size()) {
-    const bool da = std::isdigit(static_cast<unsigned char>(a[i])), db = std::isdigit(static_cast<unsigned char>(b[j]));
+    const bool da = std::isdigit(static_cast<unsigned char>(a[i])),
+               db = std::isdigit(static_cast<unsigned char>(b[j]));
     if (da && db) {
       std::size_t ei = i, ej = j;
       while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
@@ -52,7 +55,8 @@ bool natural_less(const std::string& a, const std::string& b) {
       i = ei;
       j = ej;
     } else {
-      const int ca = std::tolower(static_cast<unsigned char>(a[i])), cb = std::tolower(static_cast<unsigned char>(b[j]));
+      const int ca = std::tolower(static_cast<unsigned char>(a[i])),
+                cb = std::tolower(static_cast<unsigned char>(b[j]));
       if (ca != cb) return ca < cb;
       ++i;
       ++j;
@@ -97,7 +101,8 @@ std::string stem_of(const std::string& name) { return fs::path(name).stem().stri
 
 namespace frame_source_detail {
 
-// Any decoded image -> 8-bit BGR: grey and alpha handled, 16-bit scaled, float (EXR) clamped and gamma-encoded.
+// Any decoded image -> 8-bit BGR: grey and alpha handled, 16-bit scaled, float (EXR) clamped and
+// gamma-encoded.
 cv::Mat to_bgr8(const cv::Mat& image) {
   cv::Mat m = image;
   if (m.depth() == CV_16U) {
@@ -112,8 +117,10 @@ cv::Mat to_bgr8(const cv::Mat& image) {
   } else if (m.depth() != CV_8U) {
     m.convertTo(m, CV_8U);
   }
-  if (m.channels() == 1) cv::cvtColor(m, m, cv::COLOR_GRAY2BGR);
-  else if (m.channels() == 4) cv::cvtColor(m, m, cv::COLOR_BGRA2BGR);
+  if (m.channels() == 1)
+    cv::cvtColor(m, m, cv::COLOR_GRAY2BGR);
+  else if (m.channels() == 4)
+    cv::cvtColor(m, m, cv::COLOR_BGRA2BGR);
   else if (m.channels() == 2) {
     std::vector<cv::Mat> planes;
     cv::split(m, planes);
@@ -143,8 +150,9 @@ void check_aspect(int width, int height, bool require_2to1, const std::string& w
   if (require_2to1 && std::abs(width - 2 * height) > 1) {
     char ratio[32];
     std::snprintf(ratio, sizeof ratio, "%.3g", double(width) / height);
-    throw file_error(where, "frames are " + std::to_string(width) + "x" + std::to_string(height) + " (aspect " +
-                                ratio + ":1), not 2:1; equirectangular 360° frames must be twice as wide as high "
+    throw file_error(where, "frames are " + std::to_string(width) + "x" + std::to_string(height) +
+                                " (aspect " + ratio +
+                                ":1), not 2:1; equirectangular 360° frames must be twice as wide as high "
                                 "(import anyway with require_2to1 = false / --any-aspect)");
   }
 }
@@ -177,9 +185,12 @@ struct FolderBackend : Backend {
     if (ext != ".jpg" && ext != ".jpeg") return shrink_to_width(read(i), max_width);
     // JPEG decodes at 1/2, 1/4 or 1/8 size directly: much faster for thumbnails.
     int flag = cv::IMREAD_COLOR;
-    if (impl->width >= 8 * max_width) flag = cv::IMREAD_REDUCED_COLOR_8;
-    else if (impl->width >= 4 * max_width) flag = cv::IMREAD_REDUCED_COLOR_4;
-    else if (impl->width >= 2 * max_width) flag = cv::IMREAD_REDUCED_COLOR_2;
+    if (impl->width >= 8 * max_width)
+      flag = cv::IMREAD_REDUCED_COLOR_8;
+    else if (impl->width >= 4 * max_width)
+      flag = cv::IMREAD_REDUCED_COLOR_4;
+    else if (impl->width >= 2 * max_width)
+      flag = cv::IMREAD_REDUCED_COLOR_2;
     const std::string path = (folder / impl->names[i]).string();
     cv::Mat small;
     try {
@@ -224,9 +235,9 @@ struct VideoBackend : Backend {
     ++next_raw;
     frame = to_bgr8(frame);
     if (frame.cols != impl->width || frame.rows != impl->height)
-      throw file_error(impl->source, "frame " + std::to_string(raw) + " is " + std::to_string(frame.cols) + "x" +
-                                         std::to_string(frame.rows) + ", expected " + std::to_string(impl->width) +
-                                         "x" + std::to_string(impl->height));
+      throw file_error(impl->source, "frame " + std::to_string(raw) + " is " + std::to_string(frame.cols) +
+                                         "x" + std::to_string(frame.rows) + ", expected " +
+                                         std::to_string(impl->width) + "x" + std::to_string(impl->height));
     return frame;
   }
 };
@@ -302,7 +313,8 @@ Numbering analyse_numbering(const std::vector<std::string>& sorted_names) {
 
 std::string numbered_name(const Numbering& n, long long number) {
   std::string digits = std::to_string(number);
-  if (n.digits > static_cast<int>(digits.size())) digits = std::string(n.digits - digits.size(), '0') + digits;
+  if (n.digits > static_cast<int>(digits.size()))
+    digits = std::string(n.digits - digits.size(), '0') + digits;
   std::string stem = n.pattern;
   stem.replace(stem.find('#'), 1, digits);
   return stem + n.extension;
@@ -371,7 +383,8 @@ FolderScan scan_folder_names(const fs::path& folder) {
 }
 
 double folder_timestamp(const Numbering& numbering, long long number, int position, double rate) {
-  if (numbering.counter && number >= 0) return double(number - numbering.first) / double(numbering.step) / rate;
+  if (numbering.counter && number >= 0)
+    return double(number - numbering.first) / double(numbering.step) / rate;
   return position / rate;
 }
 
@@ -389,24 +402,29 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
   // Which files to look at: the range and stride over the sorted list, or the names a project lists.
   std::vector<std::pair<int, std::string>> candidates;  // (position in sorted list, name)
   std::map<std::string, int> position_of;
-  for (std::size_t p = 0; p < scan.all_names.size(); ++p) position_of[scan.all_names[p]] = static_cast<int>(p);
+  for (std::size_t p = 0; p < scan.all_names.size(); ++p)
+    position_of[scan.all_names[p]] = static_cast<int>(p);
   if (given_names) {
     for (const std::string& name : *given_names) {
       auto it = position_of.find(name);
       if (it == position_of.end()) {
         long long v = trailing_number(stem_of(name));
-        impl->skipped.push_back({static_cast<int>(v), name, "missing (listed in the project, not in the folder)"});
+        impl->skipped.push_back(
+            {static_cast<int>(v), name, "missing (listed in the project, not in the folder)"});
         continue;
       }
       candidates.emplace_back(it->second, name);
     }
   } else {
-    const int last = options.last_frame < 0 ? static_cast<int>(scan.all_names.size()) - 1
-                                            : std::min(options.last_frame, static_cast<int>(scan.all_names.size()) - 1);
+    const int last = options.last_frame < 0
+                         ? static_cast<int>(scan.all_names.size()) - 1
+                         : std::min(options.last_frame, static_cast<int>(scan.all_names.size()) - 1);
     if (options.first_frame > last)
-      throw file_error(folder.string(), "first frame " + std::to_string(options.first_frame) + " is beyond the " +
-                                            std::to_string(scan.all_names.size()) + " frames in the folder");
-    for (int p = options.first_frame; p <= last; p += options.stride) candidates.emplace_back(p, scan.all_names[p]);
+      throw file_error(folder.string(), "first frame " + std::to_string(options.first_frame) +
+                                            " is beyond the " + std::to_string(scan.all_names.size()) +
+                                            " frames in the folder");
+    for (int p = options.first_frame; p <= last; p += options.stride)
+      candidates.emplace_back(p, scan.all_names[p]);
 
     // Gaps in the numbering between kept files: missing frames (listed, never fatal).
     const Numbering& nb = scan.numbering;
@@ -419,7 +437,8 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
         if (missing <= 0) continue;
         if (missing <= 100) {
           for (long long v = a + nb.step; v < b; v += nb.step)
-            impl->skipped.push_back({static_cast<int>(v), numbered_name(nb, v), "missing (gap in the numbering)"});
+            impl->skipped.push_back(
+                {static_cast<int>(v), numbered_name(nb, v), "missing (gap in the numbering)"});
         } else {
           impl->skipped.push_back({static_cast<int>(a + nb.step), numbered_name(nb, a + nb.step),
                                    "missing: " + std::to_string(missing) + " frames up to " +
@@ -447,8 +466,10 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
         m = cv::imread(path, cv::IMREAD_UNCHANGED);
       } catch (const cv::Exception&) {
       }
-      if (m.empty()) h.ok = false, h.problem = "corrupt image (does not decode)";
-      else h.width = m.cols, h.height = m.rows;
+      if (m.empty())
+        h.ok = false, h.problem = "corrupt image (does not decode)";
+      else
+        h.width = m.cols, h.height = m.rows;
     }
     if (h.ok && h.width <= 0) {  // a format whose header we do not parse: decode once to learn the size
       cv::Mat m;
@@ -456,8 +477,10 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
         m = cv::imread(path, cv::IMREAD_UNCHANGED);
       } catch (const cv::Exception&) {
       }
-      if (m.empty()) h.ok = false, h.problem = "corrupt image (does not decode)";
-      else h.width = m.cols, h.height = m.rows;
+      if (m.empty())
+        h.ok = false, h.problem = "corrupt image (does not decode)";
+      else
+        h.width = m.cols, h.height = m.rows;
     }
     if (h.ok) ++size_votes[{h.width, h.height}];
     probes.push_back({position, name, h});
@@ -474,23 +497,25 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
     }
     if (p.header.width != impl->width || p.header.height != impl->height) {
       impl->skipped.push_back({static_cast<int>(number), p.name,
-                               "size " + std::to_string(p.header.width) + "x" + std::to_string(p.header.height) +
-                                   " differs from the capture's " + std::to_string(impl->width) + "x" +
-                                   std::to_string(impl->height)});
+                               "size " + std::to_string(p.header.width) + "x" +
+                                   std::to_string(p.header.height) + " differs from the capture's " +
+                                   std::to_string(impl->width) + "x" + std::to_string(impl->height)});
       continue;
     }
     impl->names.push_back(p.name);
     impl->numbers.push_back(number);
-    impl->timestamps.push_back(folder_timestamp(scan.numbering, number, p.position, options.folder_frame_rate));
+    impl->timestamps.push_back(
+        folder_timestamp(scan.numbering, number, p.position, options.folder_frame_rate));
   }
   std::sort(impl->skipped.begin(), impl->skipped.end(),
             [](const SkippedFrame& a, const SkippedFrame& b) { return natural_less(a.name, b.name); });
   if (impl->names.empty())
-    throw file_error(folder.string(), "no usable frame among " + std::to_string(candidates.size()) +
-                                          " images (" + (impl->skipped.empty() ? std::string("none listed")
-                                                                               : impl->skipped.front().name + ": " +
-                                                                                     impl->skipped.front().reason) +
-                                          ")");
+    throw file_error(
+        folder.string(),
+        "no usable frame among " + std::to_string(candidates.size()) + " images (" +
+            (impl->skipped.empty() ? std::string("none listed")
+                                   : impl->skipped.front().name + ": " + impl->skipped.front().reason) +
+            ")");
   check_aspect(impl->width, impl->height, options.require_2to1, folder.string());
   auto backend = std::make_unique<FolderBackend>();
   backend->impl = impl.get();
@@ -512,7 +537,8 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
   } catch (const cv::Exception& e) {
     throw file_error(path, std::string("cannot open video: ") + e.what());
   }
-  if (!cap.isOpened()) throw file_error(path, "cannot open video (not a video, or a container/codec FFmpeg cannot read)");
+  if (!cap.isOpened())
+    throw file_error(path, "cannot open video (not a video, or a container/codec FFmpeg cannot read)");
   double fps = cap.get(cv::CAP_PROP_FPS);
   if (!(fps > 0.0) || !std::isfinite(fps) || fps > 1000.0) fps = 30.0;
   impl->frame_rate = fps;
@@ -525,7 +551,8 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
   impl->height = first.rows;
   backend->next_raw = 1;
 
-  // The container's count can be missing or wrong: confirm that the last frame decodes, else count by decoding.
+  // The container's count can be missing or wrong: confirm that the last frame decodes, else count by
+  // decoding.
   auto count_by_decoding = [&]() {
     cap.set(cv::CAP_PROP_POS_FRAMES, 0.0);
     long long n = 0;
@@ -545,15 +572,18 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
       const long long decoded = count_by_decoding();
       if (decoded < count)
         impl->skipped.push_back({static_cast<int>(decoded), "frame " + std::to_string(decoded),
-                                 "missing: the stream ends after " + std::to_string(decoded) + " frames though the "
-                                 "container says " + std::to_string(count)});
+                                 "missing: the stream ends after " + std::to_string(decoded) +
+                                     " frames though the "
+                                     "container says " +
+                                     std::to_string(count)});
       count = decoded;
     }
   }
   if (count <= 0) throw file_error(path, "video has no decodable frame");
   check_aspect(impl->width, impl->height, options.require_2to1, path);
 
-  const long long last = options.last_frame < 0 ? count - 1 : std::min<long long>(options.last_frame, count - 1);
+  const long long last =
+      options.last_frame < 0 ? count - 1 : std::min<long long>(options.last_frame, count - 1);
   if (options.first_frame > last)
     throw file_error(path, "first frame " + std::to_string(options.first_frame) + " is beyond the video's " +
                                std::to_string(count) + " frames");
@@ -568,7 +598,8 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
 
 bool looks_like_video(const std::string& path) {
   const std::string e = lower(fs::path(path).extension().string());
-  return e == ".mp4" || e == ".mov" || e == ".mkv" || e == ".avi" || e == ".m4v" || e == ".webm" || e == ".insv";
+  return e == ".mp4" || e == ".mov" || e == ".mkv" || e == ".avi" || e == ".m4v" || e == ".webm" ||
+         e == ".insv";
 }
 
 }  // namespace
@@ -580,7 +611,8 @@ void frame_source_detail::match_depth(FrameSource::Impl& impl) { match_depth_fil
 FrameSource::FrameSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 FrameSource::~FrameSource() = default;
 
-std::unique_ptr<FrameSource> FrameSource::open(const std::string& folder_or_video, const FrameSourceOptions& options) {
+std::unique_ptr<FrameSource> FrameSource::open(const std::string& folder_or_video,
+                                               const FrameSourceOptions& options) {
   options.check();
   std::error_code ec;
   const fs::path path(folder_or_video);
@@ -607,15 +639,18 @@ std::unique_ptr<FrameSource> FrameSource::open_capture(const Capture& capture) {
   options.depth_folder = capture.depth_folder;
   options.require_2to1 = false;  // the project already holds this capture; do not refuse it now
   switch (capture.kind) {
-    case CaptureKind::kNone: throw Error("the project has no capture");
+    case CaptureKind::kNone:
+      throw Error("the project has no capture");
     case CaptureKind::kVideo: {
-      if (capture.frame_count > 0) options.last_frame = capture.first_frame + (capture.frame_count - 1) * options.stride;
+      if (capture.frame_count > 0)
+        options.last_frame = capture.first_frame + (capture.frame_count - 1) * options.stride;
       return open(capture.source, options);
     }
     case CaptureKind::kImageFolder: {
       options.folder_frame_rate = capture.frame_rate > 0 ? capture.frame_rate : 30.0;
       std::error_code ec;
-      if (!fs::is_directory(capture.source, ec)) throw file_error(capture.source, "capture folder does not exist");
+      if (!fs::is_directory(capture.source, ec))
+        throw file_error(capture.source, "capture folder does not exist");
       if (fs::exists(fs::path(capture.source) / kRigFileName, ec)) {
         if (capture.width > 0) options.stitch_width = capture.width;
         if (capture.frame_names.empty()) options.first_frame = 0;
@@ -636,7 +671,8 @@ std::unique_ptr<FrameSource> FrameSource::open_capture(const Capture& capture) {
   throw Error("unknown capture kind");
 }
 
-std::unique_ptr<FrameSource> FrameSource::from_generator(int frame_count, int width, int height, double frame_rate,
+std::unique_ptr<FrameSource> FrameSource::from_generator(int frame_count, int width, int height,
+                                                         double frame_rate,
                                                          std::function<cv::Mat(int)> generate,
                                                          const std::string& description) {
   if (frame_count <= 0 || width <= 0 || height <= 0 || !(frame_rate > 0.0) || !generate)
@@ -742,7 +778,8 @@ cv::Mat FrameSource::read_depth(int i) {
   }
   if (metres.cols != impl_->width || metres.rows != impl_->height)
     throw file_error(path, "depth map is " + std::to_string(metres.cols) + "x" + std::to_string(metres.rows) +
-                               ", the frames are " + std::to_string(impl_->width) + "x" + std::to_string(impl_->height));
+                               ", the frames are " + std::to_string(impl_->width) + "x" +
+                               std::to_string(impl_->height));
   return metres;
 }
 

@@ -20,16 +20,16 @@
 namespace plenopath {
 
 struct FrameSourceOptions {
-  int first_frame = 0;         // first frame kept: video frame number, or position in the sorted file list
-  int last_frame = -1;         // last frame kept (inclusive); -1 = up to the end
-  int stride = 1;              // keep every stride-th frame from first_frame on
-  bool require_2to1 = true;    // refuse frames that are not equirectangular 2:1 (width == 2 * height)
+  int first_frame = 0;       // first frame kept: video frame number, or position in the sorted file list
+  int last_frame = -1;       // last frame kept (inclusive); -1 = up to the end
+  int stride = 1;            // keep every stride-th frame from first_frame on
+  bool require_2to1 = true;  // refuse frames that are not equirectangular 2:1 (width == 2 * height)
   double folder_frame_rate = 30.0;  // image folders: frames per second, for time stamps and GPS matching
-  std::string depth_folder;    // optional: depth maps matched to frames by name (see read_depth)
+  std::string depth_folder;         // optional: depth maps matched to frames by name (see read_depth)
   bool verify_by_decoding = false;  // image folders: decode every frame while scanning (slow, thorough);
                                     // otherwise only headers, sizes and JPEG end markers are checked
-  int stitch_width = 2048;     // multi-head captures: width of the stitched panorama (height = width / 2)
-  void check() const;          // throws Error saying which field is wrong
+  int stitch_width = 2048;  // multi-head captures: width of the stitched panorama (height = width / 2)
+  void check() const;       // throws Error saying which field is wrong
 };
 
 // A frame left out of the capture while scanning, and why.
@@ -60,28 +60,27 @@ class FrameSource {
   // Frames made on demand by `generate(i)` (must return width x height CV_8UC3 and be thread-safe):
   // synthetic captures, stitched multi-head rigs, benchmarks.
   static std::unique_ptr<FrameSource> from_generator(int frame_count, int width, int height,
-                                                     double frame_rate,
-                                                     std::function<cv::Mat(int)> generate,
+                                                     double frame_rate, std::function<cv::Mat(int)> generate,
                                                      const std::string& description = "generated");
 
   ~FrameSource();
   FrameSource(const FrameSource&) = delete;
   FrameSource& operator=(const FrameSource&) = delete;
 
-  CaptureKind kind() const;            // kImageFolder, kVideo, or kNone for generators
-  const std::string& source() const;   // the folder or video path as given
+  CaptureKind kind() const;           // kImageFolder, kVideo, or kNone for generators
+  const std::string& source() const;  // the folder or video path as given
   int frame_count() const;
   int width() const;
   int height() const;
-  double frame_rate() const;           // frames per second of the kept frames' source (before stride)
+  double frame_rate() const;  // frames per second of the kept frames' source (before stride)
   const FrameSourceOptions& options() const;
-  int head_count() const;              // multi-head captures: number of heads; 0 otherwise
+  int head_count() const;  // multi-head captures: number of heads; 0 otherwise
 
   std::string frame_name(int i) const;  // file name relative to the folder, or "frame N" for videos
   int frame_number(int i) const;        // video frame number, or the number in the file name (-1 if none)
   double timestamp_s(int i) const;      // seconds from the source's frame 0 (video: frame number / rate)
 
-  cv::Mat read(int i);                  // full frame, CV_8UC3 BGR; throws Error naming the file/frame
+  cv::Mat read(int i);  // full frame, CV_8UC3 BGR; throws Error naming the file/frame
   // A small frame no wider than max_width (JPEG decodes at reduced size, so this is fast), CV_8UC3.
   cv::Mat read_thumbnail(int i, int max_width);
 

@@ -11,7 +11,8 @@
 namespace plenopath {
 namespace frame_source_detail {
 
-// Any decoded image -> 8-bit BGR: grey and alpha handled, 16-bit scaled, float (EXR) clamped and gamma-encoded.
+// Any decoded image -> 8-bit BGR: grey and alpha handled, 16-bit scaled, float (EXR) clamped and
+// gamma-encoded.
 cv::Mat to_bgr8(const cv::Mat& image);
 cv::Mat shrink_to_width(const cv::Mat& image, int max_width);
 
@@ -30,10 +31,10 @@ struct FrameSource::Impl {
   FrameSourceOptions options;
   int width = 0, height = 0;
   double frame_rate = 30.0;
-  int head_count = 0;                  // multi-head captures: number of heads, else 0
-  std::vector<std::string> names;      // per kept frame
-  std::vector<long long> numbers;      // per kept frame: number in the name / video frame number (-1)
-  std::vector<double> timestamps;      // per kept frame
+  int head_count = 0;              // multi-head captures: number of heads, else 0
+  std::vector<std::string> names;  // per kept frame
+  std::vector<long long> numbers;  // per kept frame: number in the name / video frame number (-1)
+  std::vector<double> timestamps;  // per kept frame
   std::vector<SkippedFrame> skipped;
   std::vector<std::string> depth_names;  // per kept frame, "" if none
   int depth_matches = 0;

@@ -41,15 +41,21 @@ std::string decode_entities(const std::string& s) {
       continue;
     }
     const std::string e = s.substr(i + 1, semi - i - 1);
-    if (e == "amp") out += '&';
-    else if (e == "lt") out += '<';
-    else if (e == "gt") out += '>';
-    else if (e == "quot") out += '"';
-    else if (e == "apos") out += '\'';
+    if (e == "amp")
+      out += '&';
+    else if (e == "lt")
+      out += '<';
+    else if (e == "gt")
+      out += '>';
+    else if (e == "quot")
+      out += '"';
+    else if (e == "apos")
+      out += '\'';
     else if (!e.empty() && e[0] == '#') {
       long code = 0;
       try {
-        code = e.size() > 1 && (e[1] == 'x' || e[1] == 'X') ? std::stol(e.substr(2), nullptr, 16) : std::stol(e.substr(1));
+        code = e.size() > 1 && (e[1] == 'x' || e[1] == 'X') ? std::stol(e.substr(2), nullptr, 16)
+                                                            : std::stol(e.substr(1));
       } catch (...) {
         code = '?';
       }
@@ -105,7 +111,8 @@ class XmlScanner {
   }
 
   [[noreturn]] void error(const std::string& what) const {
-    const long line = 1 + std::count(text_.begin(), text_.begin() + static_cast<long>(std::min(pos_, text_.size())), '\n');
+    const long line =
+        1 + std::count(text_.begin(), text_.begin() + static_cast<long>(std::min(pos_, text_.size())), '\n');
     throw file_error(file_, "line " + std::to_string(line) + ": " + what);
   }
   std::size_t position() const { return pos_; }
@@ -122,7 +129,9 @@ class XmlScanner {
     std::size_t p = pos_ + 1;
     if (p < text_.size() && text_[p] == '/') tag.closing = true, ++p;
     const std::size_t name_begin = p;
-    while (p < text_.size() && !std::isspace(static_cast<unsigned char>(text_[p])) && text_[p] != '>' && text_[p] != '/') ++p;
+    while (p < text_.size() && !std::isspace(static_cast<unsigned char>(text_[p])) && text_[p] != '>' &&
+           text_[p] != '/')
+      ++p;
     tag.name = local_name(text_.substr(name_begin, p - name_begin));
     if (tag.name.empty()) error("malformed tag");
     while (true) {
@@ -138,10 +147,13 @@ class XmlScanner {
         break;
       }
       const std::size_t an = p;
-      while (p < text_.size() && text_[p] != '=' && text_[p] != '>' && !std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
+      while (p < text_.size() && text_[p] != '=' && text_[p] != '>' &&
+             !std::isspace(static_cast<unsigned char>(text_[p])))
+        ++p;
       const std::string attribute = local_name(text_.substr(an, p - an));
       while (p < text_.size() && std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
-      if (p >= text_.size() || text_[p] != '=') error("attribute '" + attribute + "' of <" + tag.name + "> has no value");
+      if (p >= text_.size() || text_[p] != '=')
+        error("attribute '" + attribute + "' of <" + tag.name + "> has no value");
       ++p;
       while (p < text_.size() && std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
       if (p >= text_.size() || (text_[p] != '"' && text_[p] != '\''))
@@ -182,7 +194,9 @@ long long days_from_civil(long long y, int m, int d) {
 
 double parse_iso8601_utc(const std::string& text_in) {
   const std::string text = trim(text_in);
-  auto bad = [&]() { return Error("bad time '" + text + "' (expected ISO 8601, e.g. 2024-05-01T10:20:30Z)"); };
+  auto bad = [&]() {
+    return Error("bad time '" + text + "' (expected ISO 8601, e.g. 2024-05-01T10:20:30Z)");
+  };
   int year = 0, month = 0, day = 0, hour = 0, minute = 0;
   double second = 0.0;
   std::size_t p = 0;
@@ -240,8 +254,10 @@ double parse_iso8601_utc(const std::string& text_in) {
     }
   }
   if (p != text.size()) throw bad();
-  if (month < 1 || month > 12 || day < 1 || day > 31 || hour > 24 || minute > 59 || second >= 61.0) throw bad();
-  return double(days_from_civil(year, month, day)) * 86400.0 + hour * 3600.0 + minute * 60.0 + second - offset_s;
+  if (month < 1 || month > 12 || day < 1 || day > 31 || hour > 24 || minute > 59 || second >= 61.0)
+    throw bad();
+  return double(days_from_civil(year, month, day)) * 86400.0 + hour * 3600.0 + minute * 60.0 + second -
+         offset_s;
 }
 
 GpxTrack parse_gpx(const std::string& text, const std::string& file) {
@@ -267,7 +283,8 @@ GpxTrack parse_gpx(const std::string& text, const std::string& file) {
     }
     if (tag.closing) {
       if (stack.empty() || stack.back() != tag.name)
-        scanner.error("</" + tag.name + "> does not close " + (stack.empty() ? std::string("anything") : "<" + stack.back() + ">"));
+        scanner.error("</" + tag.name + "> does not close " +
+                      (stack.empty() ? std::string("anything") : "<" + stack.back() + ">"));
       const std::string value = trim(decode_entities(between));
       const std::string parent = stack.size() >= 2 ? stack[stack.size() - 2] : "";
       if (in_point && parent == point_kind) {
@@ -302,7 +319,8 @@ GpxTrack parse_gpx(const std::string& text, const std::string& file) {
       current.lat = parse_number(lat->second, &ok1);
       current.lon = parse_number(lon->second, &ok2);
       if (!ok1 || current.lat < -90 || current.lat > 90) scanner.error("bad latitude '" + lat->second + "'");
-      if (!ok2 || current.lon < -180 || current.lon > 360) scanner.error("bad longitude '" + lon->second + "'");
+      if (!ok2 || current.lon < -180 || current.lon > 360)
+        scanner.error("bad longitude '" + lon->second + "'");
       if (current.lon > 180) current.lon -= 360;
       point_kind = tag.name;
       if (tag.self_closing) {
@@ -319,12 +337,16 @@ GpxTrack parse_gpx(const std::string& text, const std::string& file) {
   if (points.empty()) throw file_error(file, "no track points (<trkpt>) or route points (<rtept>)");
   std::vector<Point> timed;
   for (const Point& p : points) {
-    if (p.has_time) timed.push_back(p);
-    else ++track.samples_without_time;
+    if (p.has_time)
+      timed.push_back(p);
+    else
+      ++track.samples_without_time;
   }
   if (timed.empty())
-    throw file_error(file, "its " + std::to_string(points.size()) + " points have no <time>; frames are matched by time");
-  std::stable_sort(timed.begin(), timed.end(), [](const Point& a, const Point& b) { return a.time < b.time; });
+    throw file_error(
+        file, "its " + std::to_string(points.size()) + " points have no <time>; frames are matched by time");
+  std::stable_sort(timed.begin(), timed.end(),
+                   [](const Point& a, const Point& b) { return a.time < b.time; });
   track.epoch_unix_s = timed.front().time;
   for (const Point& p : timed) {
     GpsSample s;
@@ -347,7 +369,8 @@ GpxTrack read_gpx(const std::string& file) {
 }
 
 void GpsMatchOptions::check() const {
-  if (!std::isfinite(time_offset_s)) throw Error("GPS matching: time_offset_s must be a finite number of seconds");
+  if (!std::isfinite(time_offset_s))
+    throw Error("GPS matching: time_offset_s must be a finite number of seconds");
   if (!(max_gap_s > 0.0)) throw Error("GPS matching: max_gap_s must be positive");
   if (!(max_extrapolation_s >= 0.0)) throw Error("GPS matching: max_extrapolation_s must be >= 0");
 }
@@ -396,23 +419,27 @@ std::vector<FrameGps> match_gps_to_frames(const std::vector<GpsSample>& samples,
   return out;
 }
 
-Eigen::Vector3d enu_from_wgs84(const GeoAnchor& anchor, double latitude_deg, double longitude_deg, double altitude_m) {
+Eigen::Vector3d enu_from_wgs84(const GeoAnchor& anchor, double latitude_deg, double longitude_deg,
+                               double altitude_m) {
   if (!anchor.valid) throw Error("the project has no geo-anchor: GPS positions cannot be placed on the plan");
   if (!(std::abs(latitude_deg) <= 90.0) || !std::isfinite(longitude_deg))
-    throw Error("bad GPS position (" + std::to_string(latitude_deg) + ", " + std::to_string(longitude_deg) + ")");
+    throw Error("bad GPS position (" + std::to_string(latitude_deg) + ", " + std::to_string(longitude_deg) +
+                ")");
   const GeographicLib::LocalCartesian local(anchor.latitude_deg, anchor.longitude_deg, anchor.altitude_m);
   double east = 0, north = 0, up = 0;
   local.Forward(latitude_deg, longitude_deg, altitude_m, east, north, up);
   return {east, north, up};
 }
 
-Eigen::Vector2d plan_from_wgs84(const GeoAnchor& anchor, double latitude_deg, double longitude_deg, double altitude_m) {
+Eigen::Vector2d plan_from_wgs84(const GeoAnchor& anchor, double latitude_deg, double longitude_deg,
+                                double altitude_m) {
   const Eigen::Vector3d enu = enu_from_wgs84(anchor, latitude_deg, longitude_deg, altitude_m);
   return anchor.plan_from_enu(enu.head<2>());
 }
 
-std::vector<GpsPrior> gps_priors(const std::vector<GpsSample>& samples, const std::vector<double>& frame_timestamps_s,
-                                 const GeoAnchor& anchor, const GpsMatchOptions& options, double sigma_m) {
+std::vector<GpsPrior> gps_priors(const std::vector<GpsSample>& samples,
+                                 const std::vector<double>& frame_timestamps_s, const GeoAnchor& anchor,
+                                 const GpsMatchOptions& options, double sigma_m) {
   if (!(sigma_m > 0.0)) throw Error("GPS priors: sigma_m must be positive");
   if (!anchor.valid) throw Error("the project has no geo-anchor: GPS positions cannot be placed on the plan");
   const GeographicLib::LocalCartesian local(anchor.latitude_deg, anchor.longitude_deg, anchor.altitude_m);

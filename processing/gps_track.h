@@ -12,10 +12,10 @@
 namespace plenopath {
 
 struct GpxTrack {
-  std::vector<GpsSample> samples;   // time_s relative to epoch_unix_s, sorted by time
-  double epoch_unix_s = 0.0;        // UTC time of the first sample, seconds since 1970-01-01
-  std::string name;                 // <trk><name>, if any
-  int samples_without_time = 0;     // points dropped because they had no <time>
+  std::vector<GpsSample> samples;  // time_s relative to epoch_unix_s, sorted by time
+  double epoch_unix_s = 0.0;       // UTC time of the first sample, seconds since 1970-01-01
+  std::string name;                // <trk><name>, if any
+  int samples_without_time = 0;    // points dropped because they had no <time>
 };
 
 // Reads <trkpt> (all tracks and segments), or <rtept> when there are no track points. Throws Error naming

@@ -75,7 +75,8 @@ ImageHeader read_jpeg(std::ifstream& in, std::uint64_t size) {
     Bytes tail;
     read_at(in, from, static_cast<std::size_t>(size - from), tail);
     bool found = false;
-    for (std::size_t k = 0; k + 1 < tail.size() && !found; ++k) found = tail[k] == 0xFF && tail[k + 1] == 0xD9;
+    for (std::size_t k = 0; k + 1 < tail.size() && !found; ++k)
+      found = tail[k] == 0xFF && tail[k + 1] == 0xD9;
     if (!found) return fail("jpeg", "corrupt JPEG (truncated: no end-of-image marker)");
   }
   h.ok = true;
@@ -108,7 +109,8 @@ ImageHeader read_tiff(std::ifstream& in, std::uint64_t size, bool little) {
   Bytes b;
   if (!read_at(in, 4, 4, b)) return fail("tiff", "corrupt TIFF (truncated header)");
   const std::uint32_t ifd = u32(b.data());
-  if (ifd < 8 || ifd + 2 > size || !read_at(in, ifd, 2, b)) return fail("tiff", "corrupt TIFF (bad directory offset)");
+  if (ifd < 8 || ifd + 2 > size || !read_at(in, ifd, 2, b))
+    return fail("tiff", "corrupt TIFF (bad directory offset)");
   const int entries = u16(b.data());
   if (entries <= 0 || !read_at(in, ifd + 2, static_cast<std::size_t>(entries) * 12, b))
     return fail("tiff", "corrupt TIFF (truncated directory)");
@@ -143,8 +145,8 @@ ImageHeader read_exr(std::ifstream& in, std::uint64_t size) {
     if (!read_string(name)) return fail("exr", "corrupt EXR (truncated header)");
     if (name.empty()) break;  // end of header
     if (!read_string(type) || p + 4 > b.size()) return fail("exr", "corrupt EXR (truncated header)");
-    const std::uint32_t n = std::uint32_t(b[p]) | (std::uint32_t(b[p + 1]) << 8) | (std::uint32_t(b[p + 2]) << 16) |
-                            (std::uint32_t(b[p + 3]) << 24);
+    const std::uint32_t n = std::uint32_t(b[p]) | (std::uint32_t(b[p + 1]) << 8) |
+                            (std::uint32_t(b[p + 2]) << 16) | (std::uint32_t(b[p + 3]) << 24);
     p += 4;
     if (p + n > b.size()) return fail("exr", "corrupt EXR (truncated header)");
     if (name == "dataWindow" && type == "box2i" && n == 16) {
@@ -174,10 +176,14 @@ ImageHeader read_image_header(const std::string& path) {
     return fail("", "too short to be an image");
   try {
     if (magic[0] == 0xFF && magic[1] == 0xD8) return read_jpeg(in, size);
-    if (magic.size() == 8 && std::memcmp(magic.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return read_png(in, size);
-    if (magic[0] == 'I' && magic[1] == 'I' && magic[2] == 42 && magic[3] == 0) return read_tiff(in, size, true);
-    if (magic[0] == 'M' && magic[1] == 'M' && magic[2] == 0 && magic[3] == 42) return read_tiff(in, size, false);
-    if (magic[0] == 0x76 && magic[1] == 0x2F && magic[2] == 0x31 && magic[3] == 0x01) return read_exr(in, size);
+    if (magic.size() == 8 && std::memcmp(magic.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
+      return read_png(in, size);
+    if (magic[0] == 'I' && magic[1] == 'I' && magic[2] == 42 && magic[3] == 0)
+      return read_tiff(in, size, true);
+    if (magic[0] == 'M' && magic[1] == 'M' && magic[2] == 0 && magic[3] == 42)
+      return read_tiff(in, size, false);
+    if (magic[0] == 0x76 && magic[1] == 0x2F && magic[2] == 0x31 && magic[3] == 0x01)
+      return read_exr(in, size);
   } catch (const std::exception& e) {
     return fail("", std::string("unreadable header: ") + e.what());
   }

@@ -8,8 +8,8 @@ namespace plenopath {
 
 struct ImageHeader {
   bool ok = false;
-  std::string format;   // "jpeg", "png", "tiff", "exr"
-  int width = 0;        // 0 if the header did not say (then decode to learn it)
+  std::string format;  // "jpeg", "png", "tiff", "exr"
+  int width = 0;       // 0 if the header did not say (then decode to learn it)
   int height = 0;
   std::string problem;  // why !ok, e.g. "empty file", "corrupt JPEG (truncated: no end-of-image marker)"
 };

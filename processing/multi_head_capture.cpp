@@ -33,8 +33,10 @@ std::string frame_key(const FrameSource& head, int i) {
   return fs::path(head.frame_name(i)).stem().string();
 }
 
-std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file, const std::vector<std::string>& head_folders,
-                                              const std::string& source_name, const FrameSourceOptions& options,
+std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file,
+                                              const std::vector<std::string>& head_folders,
+                                              const std::string& source_name,
+                                              const FrameSourceOptions& options,
                                               const std::vector<std::string>* given_names) {
   const MultiHeadRig rig = read_rig_file(rig_file);
   if (const std::string problem = rig.check(); !problem.empty()) throw file_error(rig_file, problem);
@@ -65,9 +67,9 @@ std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file, const
     std::unique_ptr<FrameSource> source = FrameSource::open(head_folders[k], head_options);
     if (source->width() != head.width || source->height() != head.height)
       throw file_error(head_folders[k], "frames are " + std::to_string(source->width()) + "x" +
-                                            std::to_string(source->height()) + " but the rig calibration " + rig_file +
-                                            " says " + std::to_string(head.width) + "x" + std::to_string(head.height) +
-                                            " for head '" + head.name + "'");
+                                            std::to_string(source->height()) + " but the rig calibration " +
+                                            rig_file + " says " + std::to_string(head.width) + "x" +
+                                            std::to_string(head.height) + " for head '" + head.name + "'");
     const std::string prefix = fs::path(head_folders[k]).filename().string() + "/";
     for (const SkippedFrame& s : source->skipped()) {
       // Gaps in other heads' numbering show up below as frames "missing from head(s) ..."; list them once.
@@ -87,7 +89,8 @@ std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file, const
     for (const std::string& name : *given_names) {
       auto it = by_name.find(name);
       if (it == by_name.end())
-        impl->skipped.push_back({-1, name, "missing from head '" + rig.heads[0].name + "' (listed in the project)"});
+        impl->skipped.push_back(
+            {-1, name, "missing from head '" + rig.heads[0].name + "' (listed in the project)"});
       else
         candidates.push_back(it->second);
     }
@@ -95,8 +98,9 @@ std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file, const
     const int n = first.frame_count();
     const int last = options.last_frame < 0 ? n - 1 : std::min(options.last_frame, n - 1);
     if (options.first_frame > last)
-      throw file_error(head_folders[0], "first frame " + std::to_string(options.first_frame) + " is beyond the " +
-                                            std::to_string(n) + " frames of head '" + rig.heads[0].name + "'");
+      throw file_error(head_folders[0], "first frame " + std::to_string(options.first_frame) +
+                                            " is beyond the " + std::to_string(n) + " frames of head '" +
+                                            rig.heads[0].name + "'");
     for (int i = options.first_frame; i <= last; i += options.stride) candidates.push_back(i);
   }
   for (int i0 : candidates) {
@@ -112,7 +116,8 @@ std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file, const
       indices.push_back(it->second);
     }
     if (!lacking.empty()) {
-      impl->skipped.push_back({first.frame_number(i0), first.frame_name(i0), "missing from head(s) " + lacking});
+      impl->skipped.push_back(
+          {first.frame_number(i0), first.frame_name(i0), "missing from head(s) " + lacking});
       continue;
     }
     impl->names.push_back(first.frame_name(i0));
@@ -139,11 +144,14 @@ std::vector<std::string> head_folders_of(const fs::path& folder, const MultiHead
   for (std::size_t k = 0; k < rig.heads.size(); ++k) {
     const fs::path by_name = folder / rig.heads[k].name;
     const fs::path by_number = folder / ("head" + std::to_string(k));
-    if (!rig.heads[k].name.empty() && fs::is_directory(by_name, ec)) folders.push_back(by_name.string());
-    else if (fs::is_directory(by_number, ec)) folders.push_back(by_number.string());
+    if (!rig.heads[k].name.empty() && fs::is_directory(by_name, ec))
+      folders.push_back(by_name.string());
+    else if (fs::is_directory(by_number, ec))
+      folders.push_back(by_number.string());
     else
-      throw file_error(folder.string(), "multi-head capture: no folder for head '" + rig.heads[k].name + "' (expected " +
-                                            by_name.filename().string() + "/ or " + by_number.filename().string() + "/)");
+      throw file_error(folder.string(), "multi-head capture: no folder for head '" + rig.heads[k].name +
+                                            "' (expected " + by_name.filename().string() + "/ or " +
+                                            by_number.filename().string() + "/)");
   }
   return folders;
 }
@@ -159,9 +167,9 @@ std::unique_ptr<FrameSource> FrameSource::open_multi_head(const std::string& rig
   return std::unique_ptr<FrameSource>(new FrameSource(std::move(impl)));
 }
 
-std::unique_ptr<FrameSource> FrameSource::open_multi_head_folder(const std::string& capture_folder,
-                                                                 const FrameSourceOptions& options,
-                                                                 const std::vector<std::string>* given_names) {
+std::unique_ptr<FrameSource> FrameSource::open_multi_head_folder(
+    const std::string& capture_folder, const FrameSourceOptions& options,
+    const std::vector<std::string>* given_names) {
   options.check();
   const fs::path folder(capture_folder);
   const std::string rig_file = (folder / kRigFileName).string();

@@ -116,7 +116,8 @@ std::vector<int> SegmentGrid::along(const Eigen::Vector2d& a, const Eigen::Vecto
 
 double SegmentGrid::distance_within(const Eigen::Vector2d& p, double radius) const {
   double best = radius;
-  for (int i : near(p, radius)) best = std::min(best, distance_point_segment(p, segments_[i].a, segments_[i].b));
+  for (int i : near(p, radius))
+    best = std::min(best, distance_point_segment(p, segments_[i].a, segments_[i].b));
   return best;
 }
 

@@ -11,13 +11,12 @@
 namespace plenopath {
 
 int keyframe_budget(const SamplingParameters& parameters, int frame_count) {
-  if (parameters.count < 0) throw Error("sampling: keyframe count must be >= 0, got " +
-                                        std::to_string(parameters.count));
+  if (parameters.count < 0)
+    throw Error("sampling: keyframe count must be >= 0, got " + std::to_string(parameters.count));
   if (!(parameters.ratio > 0.0)) throw Error("sampling: reduction ratio must be > 0");
   if (frame_count <= 0) return 0;
-  const int wanted = parameters.count > 0
-                         ? parameters.count
-                         : static_cast<int>(std::lround(frame_count / parameters.ratio));
+  const int wanted =
+      parameters.count > 0 ? parameters.count : static_cast<int>(std::lround(frame_count / parameters.ratio));
   return std::clamp(wanted, std::min(2, frame_count), frame_count);
 }
 

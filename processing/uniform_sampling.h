@@ -18,11 +18,11 @@ Keyframes sample_uniform_by_arc_length(const CameraPath& path, const SamplingPar
                                        const std::vector<int>& pinned = {});
 
 struct SamplingStatistics {
-  int kept = 0;              // keyframes that are frames of the path
-  int total = 0;             // frames in the path
-  double ratio = 0.0;        // total / kept (0 when nothing is kept)
-  double max_gap_m = 0.0;    // longest arc length between consecutive keyframes
-  double mean_gap_m = 0.0;   // path length / (kept - 1)
+  int kept = 0;             // keyframes that are frames of the path
+  int total = 0;            // frames in the path
+  double ratio = 0.0;       // total / kept (0 when nothing is kept)
+  double max_gap_m = 0.0;   // longest arc length between consecutive keyframes
+  double mean_gap_m = 0.0;  // path length / (kept - 1)
 };
 SamplingStatistics sampling_statistics(const CameraPath& path, const Keyframes& keyframes);
 

@@ -16,13 +16,14 @@ struct VideoEncodeOptions {
 
 struct VideoEncodeResult {
   int frames_written = 0;
-  int frames_failed = 0;       // frames the source could not read (left out of the video)
+  int frames_failed = 0;  // frames the source could not read (left out of the video)
   std::string fourcc;
 };
 
 // Throws Error naming the file when the container/codec cannot be written. `progress(done, total)` may
 // return false to stop early (the video then holds the frames written so far).
-VideoEncodeResult encode_video(FrameSource& source, const std::string& file, const VideoEncodeOptions& options = {},
+VideoEncodeResult encode_video(FrameSource& source, const std::string& file,
+                               const VideoEncodeOptions& options = {},
                                const std::function<bool(int, int)>& progress = {});
 
 }  // namespace plenopath

@@ -1,27 +1,32 @@
 // The plain-double half of processing/visibility.h: options, radial functions, events and cells. The CGAL
 // half (arrangement, envelopes, per-vertex windows) is visibility_cgal.cpp.
+#include "processing/visibility.h"
+
 #include <algorithm>
 #include <atomic>
-#include <mutex>
-#include <thread>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
+#include <mutex>
+#include <thread>
 
 #include "model/error.h"
 #include "processing/segment_grid.h"
-#include "processing/visibility.h"
 #include "processing/visibility_expansion.h"
 
 namespace plenopath {
 
 const char* to_string(EnvelopeStatus status) {
   switch (status) {
-    case EnvelopeStatus::ok: return "ok";
-    case EnvelopeStatus::on_wall: return "on_wall";
-    case EnvelopeStatus::inside_obstacle: return "inside_obstacle";
-    case EnvelopeStatus::outside: return "outside";
+    case EnvelopeStatus::ok:
+      return "ok";
+    case EnvelopeStatus::on_wall:
+      return "on_wall";
+    case EnvelopeStatus::inside_obstacle:
+      return "inside_obstacle";
+    case EnvelopeStatus::outside:
+      return "outside";
   }
   return "unknown";
 }
@@ -67,7 +72,8 @@ std::vector<double> VisibilityIndex::radial_function(const Eigen::Vector2d& p, i
 namespace {
 
 // Position along the path polyline at arc length s.
-Eigen::Vector2d point_at(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at, double s) {
+Eigen::Vector2d point_at(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at,
+                         double s) {
   if (points.size() == 1) return points.front();
   auto it = std::upper_bound(s_at.begin(), s_at.end(), s);
   std::size_t i = it == s_at.begin() ? 0 : static_cast<std::size_t>(it - s_at.begin()) - 1;
@@ -117,8 +123,9 @@ double VisibilityIndex::area_and_wedges(const Eigen::Vector2d& p, std::vector<En
   return exact_envelope_area(p);
 }
 
-void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at,
-                                 double s_begin, double s_end, double* area_mid, double* area_mean) const {
+void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points,
+                                    const std::vector<double>& s_at, double s_begin, double s_end,
+                                    double* area_mid, double* area_mean) const {
   std::vector<EnvelopeWedge> wedges;
   const double mid_area = area_and_wedges(point_at(points, s_at, 0.5 * (s_begin + s_end)), &wedges);
   *area_mid = *area_mean = std::max(0.0, mid_area);
@@ -150,9 +157,9 @@ void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points, 
     const std::size_t first = std::upper_bound(s_at.begin(), s_at.end(), s_begin) - s_at.begin();
     for (std::size_t k = first; k + 1 < s_at.size() && s_at[k] < s_end && may_refine(); ++k) {
       const Eigen::Vector2d before = points[k] - points[k - 1], after = points[k + 1] - points[k];
-      const bool straight = before.squaredNorm() > 0.0 && after.squaredNorm() > 0.0 && before.dot(after) > 0.0 &&
-                            std::abs(before.x() * after.y() - before.y() * after.x()) <=
-                                1e-12 * before.norm() * after.norm();
+      const bool straight =
+          before.squaredNorm() > 0.0 && after.squaredNorm() > 0.0 && before.dot(after) > 0.0 &&
+          std::abs(before.x() * after.y() - before.y() * after.x()) <= 1e-12 * before.norm() * after.norm();
       if (straight) continue;
       integral += integrate(area_at, piece_begin, s_at[k], 10, may_refine);
       piece_begin = s_at[k];
@@ -211,7 +218,8 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
       return l.s != r.s ? l.s < r.s : l.frame < r.frame;
     });
     for (const auto& e : raw) {
-      if (!result.events.empty() && e.s - result.events.back().s <= options().event_merge_distance_m) continue;
+      if (!result.events.empty() && e.s - result.events.back().s <= options().event_merge_distance_m)
+        continue;
       result.events.push_back(e);
     }
   }
@@ -228,7 +236,8 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
   // Cells between consecutive events.
   std::vector<double> bounds = {0.0};
   for (const auto& e : result.events)
-    if (e.s > bounds.back() + options().event_merge_distance_m && e.s < total - options().event_merge_distance_m)
+    if (e.s > bounds.back() + options().event_merge_distance_m &&
+        e.s < total - options().event_merge_distance_m)
       bounds.push_back(e.s);
   bounds.push_back(total);
   const bool fast = options().area_method == AreaMethod::fast_with_exact_fallback;

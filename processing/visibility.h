@@ -53,7 +53,8 @@ enum class VisibilityAlgorithm { triangular_expansion, rotational_sweep };
 // How envelope areas (envelope_area() and the cells' areas) are computed.
 enum class AreaMethod {
   // Triangular expansion in doubles over a constrained triangulation of the walls (built exactly, once),
-  // checked, with the exact CGAL class as the fallback when a check fails (processing/visibility_expansion.h).
+  // checked, with the exact CGAL class as the fallback when a check fails
+  // (processing/visibility_expansion.h).
   fast_with_exact_fallback,
   // Always CGAL's Triangular_expansion_visibility_2 on the exact kernel.
   exact,
@@ -151,8 +152,8 @@ class VisibilityIndex {
   // answered, its wedges (else they are left empty).
   double area_and_wedges(const Eigen::Vector2d& p, std::vector<EnvelopeWedge>* wedges) const;
   // The cell's area at its middle and its mean area over [s_begin, s_end] of the path polyline.
-  void areas_of_cell(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at, double s_begin,
-                  double s_end, double* area_mid, double* area_mean) const;
+  void areas_of_cell(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& s_at,
+                     double s_begin, double s_end, double* area_mid, double* area_mean) const;
   const WallTriangulation& triangulation() const;
   void count_areas(std::size_t fast, std::size_t closed_form, std::size_t exact) const;
 

@@ -14,12 +14,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <boost/variant/get.hpp>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <thread>
 #include <unordered_map>
-#include <boost/variant/get.hpp>
 
 #include "model/error.h"
 #include "processing/segment_grid.h"
@@ -48,7 +48,8 @@ using TriangularVisibilityRaw = CGAL::Triangular_expansion_visibility_2<Arrangem
 // arrangement's edges meet only at its vertices, so no constraint intersection is ever constructed.
 using CdtVertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
 using CdtFaceBase =
-    CGAL::Triangulation_face_base_with_info_2<int, Kernel, CGAL::Constrained_triangulation_face_base_2<Kernel>>;
+    CGAL::Triangulation_face_base_with_info_2<int, Kernel,
+                                              CGAL::Constrained_triangulation_face_base_2<Kernel>>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, CGAL::Triangulation_data_structure_2<CdtVertexBase, CdtFaceBase>,
     CGAL::No_constraint_intersection_requiring_constructions_tag>;
@@ -94,7 +95,8 @@ void insert_segments(Arrangement* arr, const std::vector<Segment2>& segments) {
 }
 
 // The four sides of a thin rectangle of width `width` around [a, b].
-void add_rectangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double width, std::vector<Segment2>* out) {
+void add_rectangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double width,
+                   std::vector<Segment2>* out) {
   const Eigen::Vector2d d = (b - a).normalized();
   const Eigen::Vector2d n(-d.y() * width * 0.5, d.x() * width * 0.5);
   const Eigen::Vector2d p0 = a + n, p1 = b + n, p2 = b - n, p3 = a - n;
@@ -110,9 +112,9 @@ struct VisibilityIndex::Impl {
   VisibilityOptions options;
   Arrangement arr;
   std::unique_ptr<Locator> locator;
-  std::vector<Segment2> edges;             // the arrangement's edges in doubles
-  std::unique_ptr<SegmentGrid> edge_grid;  // over `edges`
-  std::unique_ptr<SegmentGrid> thick_grid; // over the centre lines of thickened dangling walls
+  std::vector<Segment2> edges;              // the arrangement's edges in doubles
+  std::unique_ptr<SegmentGrid> edge_grid;   // over `edges`
+  std::unique_ptr<SegmentGrid> thick_grid;  // over the centre lines of thickened dangling walls
   double half_thickness = 0.005;
   WallTriangulation triangulation;  // the walls' constrained triangulation in doubles (fast area path)
   std::atomic<std::size_t> fast_areas{0}, closed_form_areas{0}, exact_areas{0};
@@ -154,7 +156,8 @@ struct VisibilityIndex::Impl {
 void VisibilityIndex::Impl::build(const FloorPlan& plan) {
   std::vector<Segment2> walls = snap_segments(plan.occluder_segments(), options.snap_tolerance_m);
   if (walls.empty())
-    throw Error(std::string("visibility: the plan") + (plan.source_file.empty() ? "" : " " + plan.source_file) +
+    throw Error(std::string("visibility: the plan") +
+                (plan.source_file.empty() ? "" : " " + plan.source_file) +
                 " has no occluding segments (choose the wall layers)");
   half_thickness = options.dangling_wall_thickness_m * 0.5;
 
@@ -314,19 +317,25 @@ void VisibilityIndex::Impl::classify_faces() {
   }
 }
 
-EnvelopeStatus VisibilityIndex::Impl::locate(const Eigen::Vector2d& p, Arrangement::Face_const_handle* face) const {
+EnvelopeStatus VisibilityIndex::Impl::locate(const Eigen::Vector2d& p,
+                                             Arrangement::Face_const_handle* face) const {
   if (!p.allFinite()) return EnvelopeStatus::outside;
   if (edge_grid->distance_within(p, 1e-6) <= 1e-9) return EnvelopeStatus::on_wall;
-  if (!thick_grid->segments().empty() && thick_grid->distance_within(p, half_thickness * 2.0) <= half_thickness)
+  if (!thick_grid->segments().empty() &&
+      thick_grid->distance_within(p, half_thickness * 2.0) <= half_thickness)
     return EnvelopeStatus::on_wall;
   const auto result = locator->locate(Point(p.x(), p.y()));
   const Arrangement::Face_const_handle* f = boost::get<Arrangement::Face_const_handle>(&result);
   if (!f) return EnvelopeStatus::on_wall;  // on a vertex or an edge
   switch ((*f)->data()) {
-    case kOutside: return EnvelopeStatus::outside;
-    case kObstacle: return EnvelopeStatus::inside_obstacle;
-    case kWallInterior: return EnvelopeStatus::on_wall;
-    default: break;
+    case kOutside:
+      return EnvelopeStatus::outside;
+    case kObstacle:
+      return EnvelopeStatus::inside_obstacle;
+    case kWallInterior:
+      return EnvelopeStatus::on_wall;
+    default:
+      break;
   }
   if (face) *face = *f;
   return EnvelopeStatus::ok;
@@ -433,8 +442,9 @@ std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<vo
       if (curr->face()->data() == kFree) wedges.push_back(curr);
     } while (++curr != first);
   }
-  int threads = impl.options.threads > 0 ? impl.options.threads
-                                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int threads = impl.options.threads > 0
+                    ? impl.options.threads
+                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::max(1, std::min<int>(threads, static_cast<int>(wedges.size() / 64) + 1));
   // One list per wedge, joined in wedge order: the result does not depend on the threads' timing.
   std::vector<std::vector<CriticalLine>> per_wedge(wedges.size());

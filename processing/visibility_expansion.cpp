@@ -45,11 +45,16 @@ void WallTriangulation::finish() {
   nx_ = std::max(1, static_cast<int>(std::ceil(size.x() / cell_size_)));
   ny_ = std::max(1, static_cast<int>(std::ceil(size.y() / cell_size_)));
   cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-  auto clamp_x = [&](double x) { return std::clamp(static_cast<int>(std::floor((x - origin_.x()) / cell_size_)), 0, nx_ - 1); };
-  auto clamp_y = [&](double y) { return std::clamp(static_cast<int>(std::floor((y - origin_.y()) / cell_size_)), 0, ny_ - 1); };
+  auto clamp_x = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - origin_.x()) / cell_size_)), 0, nx_ - 1);
+  };
+  auto clamp_y = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - origin_.y()) / cell_size_)), 0, ny_ - 1);
+  };
   for (std::size_t t = 0; t < corners.size(); ++t) {
     Eigen::Vector2d tlo = points[corners[t][0]], thi = tlo;
-    for (int k = 1; k < 3; ++k) tlo = tlo.cwiseMin(points[corners[t][k]]), thi = thi.cwiseMax(points[corners[t][k]]);
+    for (int k = 1; k < 3; ++k)
+      tlo = tlo.cwiseMin(points[corners[t][k]]), thi = thi.cwiseMax(points[corners[t][k]]);
     for (int y = clamp_y(tlo.y()); y <= clamp_y(thi.y()); ++y)
       for (int x = clamp_x(tlo.x()); x <= clamp_x(thi.x()); ++x)
         cells_[static_cast<std::size_t>(y) * nx_ + x].push_back(static_cast<int>(t));
@@ -59,7 +64,8 @@ void WallTriangulation::finish() {
 int WallTriangulation::locate(const Eigen::Vector2d& p, int* on_edge) const {
   *on_edge = -1;
   if (cells_.empty() || !p.allFinite()) return -1;
-  const double fx = std::floor((p.x() - origin_.x()) / cell_size_), fy = std::floor((p.y() - origin_.y()) / cell_size_);
+  const double fx = std::floor((p.x() - origin_.x()) / cell_size_),
+               fy = std::floor((p.y() - origin_.y()) / cell_size_);
   if (fx < 0 || fy < 0 || fx >= nx_ || fy >= ny_) return -1;
   constexpr double kMargin = 1e-9;  // metres
   int edge_triangle = -1, edge = -1;
@@ -71,8 +77,10 @@ int WallTriangulation::locate(const Eigen::Vector2d& p, int* on_edge) const {
       const double length = (b - a).norm();
       if (!(length > 0.0)) break;
       const double distance = cross(b - a, p - a) / length;  // positive inside
-      if (distance > kMargin) ++inside;
-      else if (distance >= -kMargin) near = k;
+      if (distance > kMargin)
+        ++inside;
+      else if (distance >= -kMargin)
+        near = k;
     }
     if (inside == 3) return t;
     if (inside == 2 && near >= 0) edge_triangle = t, edge = near;
@@ -108,10 +116,10 @@ bool expand_envelope(const WallTriangulation& tri, const Eigen::Vector2d& p, lon
     int j = 0;
     while (j < 3 && (oc[j] == a || oc[j] == b)) ++j;
     if (j == 3 || oc[(j + 2) % 3] != a || oc[(j + 1) % 3] != b) return false;
-    stack.push_back({other, (j + 2) % 3, oc[j], b});          // C -> B
-    stack.push_back({other, (j + 1) % 3, a, oc[j]});          // A -> C
-    stack.push_back({start, (k + 2) % 3, sc[k], a});          // corner k -> A
-    stack.push_back({start, (k + 1) % 3, b, sc[k]});          // B -> corner k
+    stack.push_back({other, (j + 2) % 3, oc[j], b});  // C -> B
+    stack.push_back({other, (j + 1) % 3, a, oc[j]});  // A -> C
+    stack.push_back({start, (k + 2) % 3, sc[k], a});  // corner k -> A
+    stack.push_back({start, (k + 1) % 3, b, sc[k]});  // B -> corner k
   }
   long steps = 0;
   while (!stack.empty()) {
@@ -124,7 +132,8 @@ bool expand_envelope(const WallTriangulation& tri, const Eigen::Vector2d& p, lon
     const int next = tri.neighbours[w.triangle][w.edge];
     if (tri.walls[w.triangle][w.edge]) {
       // A vertex that only splits the window (not an end of this wall) leaves the wall's piece whole.
-      if (!wedges->empty() && wedges->back().wall_a == a && wedges->back().wall_b == b && wedges->back().left == w.right)
+      if (!wedges->empty() && wedges->back().wall_a == a && wedges->back().wall_b == b &&
+          wedges->back().left == w.right)
         wedges->back().left = w.left;
       else
         wedges->push_back({a, b, w.right, w.left});
@@ -158,8 +167,8 @@ bool expand_envelope(const WallTriangulation& tri, const Eigen::Vector2d& p, lon
   return wedges_area(tri, *wedges, p, true, area);
 }
 
-bool wedges_area(const WallTriangulation& tri, const std::vector<EnvelopeWedge>& wedges, const Eigen::Vector2d& q,
-                 bool check_turn, double* area) {
+bool wedges_area(const WallTriangulation& tri, const std::vector<EnvelopeWedge>& wedges,
+                 const Eigen::Vector2d& q, bool check_turn, double* area) {
   if (wedges.empty()) return false;
   double twice = 0.0, turn = 0.0;
   for (std::size_t i = 0; i < wedges.size(); ++i) {

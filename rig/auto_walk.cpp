@@ -17,7 +17,8 @@ namespace plenopath {
 std::string AutoWalkOptions::check() const {
   if (!(step > 0.0) || step > 10.0) return "step must be in (0, 10] m";
   if (!(step_wobble >= 0.0) || step_wobble >= 1.0) return "step_wobble must be in [0, 1)";
-  if (!(heading_wobble_deg >= 0.0) || heading_wobble_deg > 45.0) return "heading_wobble_deg must be in [0, 45]";
+  if (!(heading_wobble_deg >= 0.0) || heading_wobble_deg > 45.0)
+    return "heading_wobble_deg must be in [0, 45]";
   if (!(clearance > 0.0) || clearance > 5.0) return "clearance must be in (0, 5] m";
   if (!(room_spacing > 0.2)) return "room_spacing must be > 0.2 m";
   if (max_frames < 0) return "max_frames must be >= 0";
@@ -51,16 +52,20 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
   const Eigen::Vector2d origin = scene.floor_min;
   const int cols = static_cast<int>(std::ceil((scene.floor_max.x() - origin.x()) / kCell)) + 1;
   const int rows = static_cast<int>(std::ceil((scene.floor_max.y() - origin.y()) / kCell)) + 1;
-  if (static_cast<double>(cols) * rows > 4e7) throw Error("auto walk: the plan is too large for the walk grid");
+  if (static_cast<double>(cols) * rows > 4e7)
+    throw Error("auto walk: the plan is too large for the walk grid");
   auto to_cell = [&](const Eigen::Vector2d& p) {
     return cv::Point(static_cast<int>(std::lround((p.x() - origin.x()) / kCell)),
                      static_cast<int>(std::lround((p.y() - origin.y()) / kCell)));
   };
-  auto to_plan = [&](int cx, int cy) { return Eigen::Vector2d(origin.x() + cx * kCell, origin.y() + cy * kCell); };
+  auto to_plan = [&](int cx, int cy) {
+    return Eigen::Vector2d(origin.x() + cx * kCell, origin.y() + cy * kCell);
+  };
 
   cv::Mat free_space(rows, cols, CV_8U, cv::Scalar(255));
   cv::rectangle(free_space, cv::Rect(0, 0, cols, rows), cv::Scalar(0), 1);
-  for (const auto& f : scene.faces) cv::line(free_space, to_cell(f.a), to_cell(f.b), cv::Scalar(0), 1, cv::LINE_8);
+  for (const auto& f : scene.faces)
+    cv::line(free_space, to_cell(f.a), to_cell(f.b), cv::Scalar(0), 1, cv::LINE_8);
   for (const auto& fp : scene.footprints) {
     std::vector<cv::Point> poly;
     for (const auto& p : fp.points) poly.push_back(to_cell(p));
@@ -94,7 +99,8 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
   for (int y = 0; y < rows; ++y)
     for (int x = 0; x < cols; ++x)
       if (labels.at<int>(y, x) == best) candidates.push_back({distance.at<float>(y, x), cv::Point(x, y)});
-  std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<cv::Point> waypoints;
   const double spacing_cells = options.room_spacing / kCell;
   for (const auto& [d, p] : candidates) {
@@ -108,7 +114,9 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
   }
 
   // Step cost: longer near obstacles so legs keep to the middle of passages and doorways.
-  auto cost = [&](int x, int y) { return 1.0 + 4.0 * std::max(0.0, 1.2 - static_cast<double>(distance.at<float>(y, x))); };
+  auto cost = [&](int x, int y) {
+    return 1.0 + 4.0 * std::max(0.0, 1.2 - static_cast<double>(distance.at<float>(y, x)));
+  };
   std::vector<cv::Point> route{waypoints.front()};
   std::vector<char> visited(waypoints.size(), 0);
   visited[0] = 1;
@@ -203,7 +211,8 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
   for (std::size_t i = 1; i < pts.size(); ++i) arc[i] = arc[i - 1] + (pts[i] - pts[i - 1]).norm();
   auto at = [&](double s) {
     s = std::clamp(s, 0.0, arc.back());
-    const std::size_t i = std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), arc.size() - 1);
+    const std::size_t i =
+        std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), arc.size() - 1);
     const std::size_t i0 = i == 0 ? 0 : i - 1;
     const double span = arc[i] - arc[i0];
     const double t = span > 0 ? (s - arc[i0]) / span : 0.0;
@@ -224,7 +233,8 @@ CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
     f.index = i;
     f.x = p.x();
     f.y = p.y();
-    f.heading = wrap_angle(std::atan2(tangent.y(), tangent.x()) + radians(options.heading_wobble_deg) * turn(i));
+    f.heading =
+        wrap_angle(std::atan2(tangent.y(), tangent.x()) + radians(options.heading_wobble_deg) * turn(i));
     if (!options.frame_pattern.empty()) {
       std::snprintf(name, sizeof(name), options.frame_pattern.c_str(), i);
       f.file = name;

@@ -33,10 +33,17 @@ void sample_equirect_bilinear(const cv::Mat& image, double x, double y, float* o
   if (image.empty()) throw Error("sample_equirect_bilinear: empty image");
   if (!std::isfinite(x) || !std::isfinite(y)) throw Error("sample_equirect_bilinear: non-finite coordinates");
   switch (image.depth()) {
-    case CV_8U: sample_typed<unsigned char>(image, x, y, out); break;
-    case CV_16U: sample_typed<unsigned short>(image, x, y, out); break;
-    case CV_32F: sample_typed<float>(image, x, y, out); break;
-    default: throw Error("sample_equirect_bilinear: unsupported image depth");
+    case CV_8U:
+      sample_typed<unsigned char>(image, x, y, out);
+      break;
+    case CV_16U:
+      sample_typed<unsigned short>(image, x, y, out);
+      break;
+    case CV_32F:
+      sample_typed<float>(image, x, y, out);
+      break;
+    default:
+      throw Error("sample_equirect_bilinear: unsupported image depth");
   }
 }
 

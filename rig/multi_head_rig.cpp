@@ -33,7 +33,8 @@ Eigen::Matrix3d rotation_x(double a) {
 Eigen::Matrix3d PinholeHead::rig_from_head() const {
   Eigen::Matrix3d base;  // columns: right, down, forward of a head looking along +x
   base << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return rotation_z(-radians(yaw_deg)) * rotation_y(-radians(pitch_deg)) * rotation_x(radians(roll_deg)) * base;
+  return rotation_z(-radians(yaw_deg)) * rotation_y(-radians(pitch_deg)) * rotation_x(radians(roll_deg)) *
+         base;
 }
 
 Eigen::Vector3d PinholeHead::bearing(const Eigen::Vector2d& pixel) const {
@@ -55,7 +56,8 @@ std::string MultiHeadRig::check() const {
     const std::string who = "head " + std::to_string(i) + " ('" + h.name + "')";
     if (h.name.empty()) return "head " + std::to_string(i) + " has no name";
     if (!names.insert(h.name).second) return "two heads are named '" + h.name + "'";
-    if (h.width < 2 || h.height < 2 || h.width > 20000 || h.height > 20000) return who + ": size must be 2..20000 pixels";
+    if (h.width < 2 || h.height < 2 || h.width > 20000 || h.height > 20000)
+      return who + ": size must be 2..20000 pixels";
     if (!(h.fx > 0) || !(h.fy > 0)) return who + ": fx and fy must be > 0";
     if (!std::isfinite(h.cx) || !std::isfinite(h.cy)) return who + ": cx and cy must be finite";
     if (!h.offset.allFinite() || h.offset.norm() > 1.0) return who + ": offset must be under 1 m";
@@ -80,8 +82,8 @@ MultiHeadRig make_default_rig(const DefaultRigOptions& o) {
     rig.heads.push_back(head);
   };
   for (int i = 0; i < o.ring_heads; ++i)
-    add("ring" + std::to_string(i), o.ring_width, o.ring_height, o.ring_horizontal_fov_deg, o.ring_vertical_fov_deg,
-        360.0 * i / o.ring_heads, 0.0);
+    add("ring" + std::to_string(i), o.ring_width, o.ring_height, o.ring_horizontal_fov_deg,
+        o.ring_vertical_fov_deg, 360.0 * i / o.ring_heads, 0.0);
   if (o.up) add("up", o.cap_size, o.cap_size, o.cap_fov_deg, o.cap_fov_deg, 0.0, 90.0);
   if (o.down) add("down", o.cap_size, o.cap_size, o.cap_fov_deg, o.cap_fov_deg, 0.0, -90.0);
   return rig;
@@ -90,9 +92,17 @@ MultiHeadRig make_default_rig(const DefaultRigOptions& o) {
 nlohmann::json rig_to_json(const MultiHeadRig& rig) {
   nlohmann::json heads = nlohmann::json::array();
   for (const auto& h : rig.heads)
-    heads.push_back({{"name", h.name}, {"width", h.width}, {"height", h.height}, {"fx", h.fx}, {"fy", h.fy},
-                     {"cx", h.cx}, {"cy", h.cy}, {"yaw_deg", h.yaw_deg}, {"pitch_deg", h.pitch_deg},
-                     {"roll_deg", h.roll_deg}, {"offset_m", {h.offset.x(), h.offset.y(), h.offset.z()}}});
+    heads.push_back({{"name", h.name},
+                     {"width", h.width},
+                     {"height", h.height},
+                     {"fx", h.fx},
+                     {"fy", h.fy},
+                     {"cx", h.cx},
+                     {"cy", h.cy},
+                     {"yaw_deg", h.yaw_deg},
+                     {"pitch_deg", h.pitch_deg},
+                     {"roll_deg", h.roll_deg},
+                     {"offset_m", {h.offset.x(), h.offset.y(), h.offset.z()}}});
   return {{"format", "plenopath-rig"}, {"version", 1}, {"heads", heads}};
 }
 
@@ -132,7 +142,8 @@ MultiHeadRig read_rig_file(const std::string& file) {
 
 void write_rig_file(const MultiHeadRig& rig, const std::string& file) {
   if (const std::string e = rig.check(); !e.empty()) throw file_error(file, e);
-  write_file_atomically(file, rig_to_json(rig).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
+  write_file_atomically(
+      file, rig_to_json(rig).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRig& rig, const PathFrame& pose,
@@ -147,7 +158,8 @@ std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRi
     const Eigen::Matrix3d world_from_head = world_from_rig * head.rig_from_head();
     for (int v = 0; v < head.height; ++v)
       for (int u = 0; u < head.width; ++u) {
-        const Eigen::Vector3d d = world_from_head * Eigen::Vector3d((u - head.cx) / head.fx, (v - head.cy) / head.fy, 1.0);
+        const Eigen::Vector3d d =
+            world_from_head * Eigen::Vector3d((u - head.cx) / head.fx, (v - head.cy) / head.fy, 1.0);
         directions.at<cv::Vec3d>(v, u) = cv::Vec3d(d.x(), d.y(), d.z());
       }
     RenderedPanorama r = render_directions(scene, nodal + world_from_rig * head.offset, directions,
@@ -168,7 +180,8 @@ std::string StitchOptions::check() const {
 namespace {
 
 // Where head `head` samples the panorama's bearing b, given the stitch distance.
-bool head_pixel(const PinholeHead& head, const Eigen::Vector3d& b, double stitch_distance, Eigen::Vector2d* p) {
+bool head_pixel(const PinholeHead& head, const Eigen::Vector3d& b, double stitch_distance,
+                Eigen::Vector2d* p) {
   const Eigen::Vector3d dir = stitch_distance > 0 ? Eigen::Vector3d(stitch_distance * b - head.offset) : b;
   return head.project(dir, p) && head.inside(*p);
 }
@@ -225,7 +238,8 @@ cv::Mat stitch_heads(const StitchMaps& maps, const std::vector<cv::Mat>& head_im
                 std::to_string(maps.map_x.size()) + " heads");
   cv::Mat acc = cv::Mat::zeros(maps.height, maps.width, CV_32FC3);
   for (std::size_t i = 0; i < head_images.size(); ++i) {
-    if (head_images[i].type() != CV_8UC3) throw Error("stitch: head image " + std::to_string(i) + " is not 8-bit BGR");
+    if (head_images[i].type() != CV_8UC3)
+      throw Error("stitch: head image " + std::to_string(i) + " is not 8-bit BGR");
     cv::Mat warped, warped_f, w3;
     cv::remap(head_images[i], warped, maps.map_x[i], maps.map_y[i], cv::INTER_LINEAR, cv::BORDER_REPLICATE);
     warped.convertTo(warped_f, CV_32FC3);
@@ -280,7 +294,8 @@ std::array<cv::Mat, 6> equirect_to_cube(const cv::Mat& equirect, int face_size) 
     cv::Mat mx(face_size, face_size, CV_32F), my(face_size, face_size, CV_32F);
     for (int j = 0; j < face_size; ++j)
       for (int i = 0; i < face_size; ++i) {
-        const Eigen::Vector3d b = cube_face_to_bearing(static_cast<CubeFace>(f), {i + 0.5, j + 0.5}, face_size);
+        const Eigen::Vector3d b =
+            cube_face_to_bearing(static_cast<CubeFace>(f), {i + 0.5, j + 0.5}, face_size);
         const Eigen::Vector2d p = bearing_to_equirect(b, equirect.cols, equirect.rows);
         mx.at<float>(j, i) = static_cast<float>(p.x() - 0.5 + 1.0);
         my.at<float>(j, i) = static_cast<float>(p.y() - 0.5 + 1.0);
@@ -304,7 +319,8 @@ cv::Mat cube_to_equirect(const std::array<cv::Mat, 6>& faces, int width, int hei
   }
   for (int v = 0; v < height; ++v)
     for (int u = 0; u < width; ++u) {
-      const CubeFacePixel p = bearing_to_cube_face(equirect_to_bearing({u + 0.5, v + 0.5}, width, height), size);
+      const CubeFacePixel p =
+          bearing_to_cube_face(equirect_to_bearing({u + 0.5, v + 0.5}, width, height), size);
       const int f = static_cast<int>(p.face);
       mx[f].at<float>(v, u) = static_cast<float>(p.pixel.x() - 0.5);
       my[f].at<float>(v, u) = static_cast<float>(p.pixel.y() - 0.5);

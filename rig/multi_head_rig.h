@@ -1,8 +1,8 @@
 #pragma once
-// The multi-head rig: N pinhole heads sharing (nearly) one nodal point, like the seed's 10-head camera (a ring
-// of heads plus one looking up and one looking down). Rig frame = camera frame of rig/spherical.h (+x forward,
-// +y left, +z up). Head frame: OpenCV pinhole (x right, y down, z along the optical axis); pixel (u, v) has
-// its centre at integer coordinates (u, v), as cv::remap expects.
+// The multi-head rig: N pinhole heads sharing (nearly) one nodal point, like the seed's 10-head camera (a
+// ring of heads plus one looking up and one looking down). Rig frame = camera frame of rig/spherical.h (+x
+// forward, +y left, +z up). Head frame: OpenCV pinhole (x right, y down, z along the optical axis); pixel (u,
+// v) has its centre at integer coordinates (u, v), as cv::remap expects.
 //
 // Calibration file (JSON):
 // {"format":"plenopath-rig","version":1,"heads":[{"name":"ring0","width":512,"height":640,
@@ -48,14 +48,15 @@ struct MultiHeadRig {
 };
 
 struct DefaultRigOptions {
-  int ring_heads = 8;          // heads around the horizon, evenly spread in yaw
-  bool up = true, down = true; // one head at the zenith, one at the nadir
+  int ring_heads = 8;           // heads around the horizon, evenly spread in yaw
+  bool up = true, down = true;  // one head at the zenith, one at the nadir
   int ring_width = 512, ring_height = 640;
   double ring_horizontal_fov_deg = 62.0;  // > 360 / ring_heads, so neighbours overlap
   double ring_vertical_fov_deg = 104.0;
   int cap_size = 512;
   double cap_fov_deg = 104.0;
-  double offset_radius = 0.0;  // metres: heads sit this far out along their optical axes (0 = one nodal point)
+  double offset_radius =
+      0.0;  // metres: heads sit this far out along their optical axes (0 = one nodal point)
 };
 // The default is the seed's 10 heads: 8 in a ring, one up, one down.
 MultiHeadRig make_default_rig(const DefaultRigOptions& options = {});
@@ -72,8 +73,8 @@ std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRi
 // ---- stitching to equirectangular
 struct StitchOptions {
   int width = 2048, height = 1024;
-  double feather = 0.15;          // fraction of the head's half-size over which its weight ramps up from the border
-  double stitch_distance = 0.0;   // metres at which head offsets are compensated (0 = infinitely far)
+  double feather = 0.15;  // fraction of the head's half-size over which its weight ramps up from the border
+  double stitch_distance = 0.0;  // metres at which head offsets are compensated (0 = infinitely far)
   std::string check() const;
 };
 // Precomputed remap tables: build once per rig and size, stitch many frames.
@@ -87,14 +88,15 @@ StitchMaps make_stitch_maps(const MultiHeadRig& rig, const StitchOptions& option
 // Feathered blend of the heads' images (CV_8UC3, sizes as in the rig) into an equirectangular panorama.
 cv::Mat stitch_heads(const StitchMaps& maps, const std::vector<cv::Mat>& head_images);
 
-// Parallax at the seams: where two or more heads overlap, how far apart (equirect pixels) the heads would place
-// the scene point at the depth of `depth_panorama` (metres, as rendered at the rig's nodal point) once the
-// stitch assumes `stitch_distance`. Zero for a rig without offsets.
+// Parallax at the seams: where two or more heads overlap, how far apart (equirect pixels) the heads would
+// place the scene point at the depth of `depth_panorama` (metres, as rendered at the rig's nodal point) once
+// the stitch assumes `stitch_distance`. Zero for a rig without offsets.
 struct SeamParallax {
   double mean_px = 0.0, max_px = 0.0;
   double overlap_fraction = 0.0;  // of the panorama's pixels seen by two or more heads
 };
-SeamParallax seam_parallax(const MultiHeadRig& rig, const cv::Mat& depth_panorama, const StitchOptions& options);
+SeamParallax seam_parallax(const MultiHeadRig& rig, const cv::Mat& depth_panorama,
+                           const StitchOptions& options);
 
 // ---- cube maps (faces as in rig/spherical.h: front, back, left, right, up, down)
 std::array<cv::Mat, 6> equirect_to_cube(const cv::Mat& equirect, int face_size);

@@ -16,7 +16,8 @@ DrawingPolyline rectangle(double x0, double y0, double x1, double y1, const std:
 }
 
 // A wall along x at height y from x0 to x1, with gaps [g0, g1) sorted by g0.
-void horizontal_wall(PlanDrawing& d, double y, double x0, double x1, const std::vector<std::pair<double, double>>& gaps) {
+void horizontal_wall(PlanDrawing& d, double y, double x0, double x1,
+                     const std::vector<std::pair<double, double>>& gaps) {
   double x = x0;
   for (const auto& g : gaps) {
     d.lines.push_back({V(x, y), V(g.first, y), "WALLS"});
@@ -24,7 +25,8 @@ void horizontal_wall(PlanDrawing& d, double y, double x0, double x1, const std::
   }
   d.lines.push_back({V(x, y), V(x1, y), "WALLS"});
 }
-void vertical_wall(PlanDrawing& d, double x, double y0, double y1, const std::vector<std::pair<double, double>>& gaps) {
+void vertical_wall(PlanDrawing& d, double x, double y0, double y1,
+                   const std::vector<std::pair<double, double>>& gaps) {
   double y = y0;
   for (const auto& g : gaps) {
     d.lines.push_back({V(x, y), V(x, g.first), "WALLS"});
@@ -59,7 +61,8 @@ PlanDrawing make_office_sample_drawing() {
   // The corridor (y 6.5 .. 8.5) and its doorways.
   horizontal_wall(d, 8.5, 0.0, 25.0, {{3.0, 4.8}, {10.5, 11.4}, {16.2, 17.1}, {21.5, 22.4}});
   horizontal_wall(d, 6.5, 0.0, 25.0, {{4.0, 4.9}, {11.0, 14.0}, {19.5, 20.4}});
-  // Room dividers: north side (Open Office | Meeting Room | Kitchen | Director), south (Lab | Lobby | Library).
+  // Room dividers: north side (Open Office | Meeting Room | Kitchen | Director), south (Lab | Lobby |
+  // Library).
   vertical_wall(d, 8.0, 8.5, 15.0, {});
   vertical_wall(d, 14.0, 8.5, 15.0, {{12.0, 12.9}});
   vertical_wall(d, 19.5, 8.5, 15.0, {});
@@ -89,26 +92,26 @@ PlanDrawing make_office_sample_drawing() {
   block("CABINET", 0.5, 2.0);
   block("COUNTER", 3.0, 0.6);
   block("SHELF", 2.0, 0.4);
-  furniture(d, "DESK", 1.3, 10.5, 90);   // Open Office
+  furniture(d, "DESK", 1.3, 10.5, 90);  // Open Office
   furniture(d, "DESK", 6.7, 10.5, 90);
   furniture(d, "DESK", 2.2, 14.2);
   furniture(d, "DESK", 5.8, 14.2);
   furniture(d, "TABLE", 11.0, 12.5);     // Meeting Room
   furniture(d, "COUNTER", 16.75, 14.6);  // Kitchen
   furniture(d, "DESK", 17.0, 11.5);
-  furniture(d, "DESK", 22.5, 13.0);      // Director
+  furniture(d, "DESK", 22.5, 13.0);  // Director
   furniture(d, "CABINET", 24.6, 11.0);
-  furniture(d, "TABLE", 2.5, 2.5);       // Lab
+  furniture(d, "TABLE", 2.5, 2.5);  // Lab
   furniture(d, "TABLE", 6.5, 2.5);
   furniture(d, "DESK", 12.5, 1.0);       // Lobby
   furniture(d, "TABLE", 18.0, 3.0, 90);  // Library
   furniture(d, "SHELF", 22.5, 3.0, 90);
   furniture(d, "SHELF", 24.0, 3.0, 90);
 
-  const std::pair<const char*, V> rooms[] = {
-      {"Open Office", V(4.0, 12.8)}, {"Meeting Room", V(11.0, 10.0)}, {"Kitchen", V(16.75, 10.0)},
-      {"Director", V(22.25, 10.0)},  {"Lab", V(4.5, 5.0)},             {"Lobby", V(12.5, 5.0)},
-      {"Library", V(20.5, 5.0)},     {"Corridor", V(12.5, 7.5)}};
+  const std::pair<const char*, V> rooms[] = {{"Open Office", V(4.0, 12.8)}, {"Meeting Room", V(11.0, 10.0)},
+                                             {"Kitchen", V(16.75, 10.0)},   {"Director", V(22.25, 10.0)},
+                                             {"Lab", V(4.5, 5.0)},          {"Lobby", V(12.5, 5.0)},
+                                             {"Library", V(20.5, 5.0)},     {"Corridor", V(12.5, 7.5)}};
   for (const auto& r : rooms) d.texts.push_back({r.second, 0.35, r.first, "TEXT"});
   return d;
 }

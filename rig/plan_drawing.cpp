@@ -14,12 +14,15 @@ const DrawingBlock* PlanDrawing::find_block(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<Eigen::Vector2d> insert_points(const DrawingInsert& insert, const std::vector<Eigen::Vector2d>& points) {
+std::vector<Eigen::Vector2d> insert_points(const DrawingInsert& insert,
+                                           const std::vector<Eigen::Vector2d>& points) {
   const double r = insert.rotation_deg * M_PI / 180.0;
   const double c = std::cos(r), s = std::sin(r);
   std::vector<Eigen::Vector2d> out;
   out.reserve(points.size());
-  for (const auto& p : points) out.emplace_back(insert.position.x() + c * p.x() - s * p.y(), insert.position.y() + s * p.x() + c * p.y());
+  for (const auto& p : points)
+    out.emplace_back(insert.position.x() + c * p.x() - s * p.y(),
+                     insert.position.y() + s * p.x() + c * p.y());
   return out;
 }
 
@@ -89,7 +92,8 @@ FloorPlan flatten_drawing(const PlanDrawing& d, const FlattenOptions& options) {
     const DrawingBlock* block = d.find_block(ins.block);
     if (!block) throw Error("flatten_drawing: insert of unknown block '" + ins.block + "'");
     for (const auto& p : block->polylines)
-      b.outline(insert_points(ins, p.points), p.closed, p.layer == "0" || p.layer.empty() ? ins.layer : p.layer);
+      b.outline(insert_points(ins, p.points), p.closed,
+                p.layer == "0" || p.layer.empty() ? ins.layer : p.layer);
   }
   for (const auto& t : d.texts) {
     b.layer(t.layer).entity_count++;

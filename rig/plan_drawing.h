@@ -1,7 +1,8 @@
 #pragma once
 // A floor plan as CAD primitives (lines, polylines, circles, arcs, texts, blocks and their inserts), in
 // metres. The sample plan is authored this way so that one description yields both the DXF file the project
-// ships (processing/plan/dxf_export.h) and the FloorPlan tests use without the DXF importer (flatten_drawing).
+// ships (processing/plan/dxf_export.h) and the FloorPlan tests use without the DXF importer
+// (flatten_drawing).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -65,7 +66,7 @@ struct PlanDrawing {
 };
 
 struct FlattenOptions {
-  int circle_segments = 32;        // chords per full circle (arcs get a proportional share, at least 2)
+  int circle_segments = 32;  // chords per full circle (arcs get a proportional share, at least 2)
 };
 
 // The drawing as the studio sees a plan: lines and polyline edges become segments, polylines, circles,
@@ -74,7 +75,8 @@ struct FlattenOptions {
 FloorPlan flatten_drawing(const PlanDrawing& drawing, const FlattenOptions& options = {});
 
 // The points of an insert's polyline in plan coordinates.
-std::vector<Eigen::Vector2d> insert_points(const DrawingInsert& insert, const std::vector<Eigen::Vector2d>& points);
+std::vector<Eigen::Vector2d> insert_points(const DrawingInsert& insert,
+                                           const std::vector<Eigen::Vector2d>& points);
 
 // The office sample as CAD primitives (metres). Layers WALLS, COLUMNS, DOORS, FURNITURE, TEXT.
 PlanDrawing make_office_sample_drawing();

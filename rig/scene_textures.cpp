@@ -32,7 +32,8 @@ cv::Mat periodic_noise(cv::RNG& rng, int n, int g) {
 }
 
 // Adds noise at several scales to every channel, with a per-channel weight.
-void add_noise(cv::Mat& img, cv::RNG& rng, const std::vector<std::pair<int, float>>& octaves, cv::Vec3f weight) {
+void add_noise(cv::Mat& img, cv::RNG& rng, const std::vector<std::pair<int, float>>& octaves,
+               cv::Vec3f weight) {
   const int n = img.rows;
   cv::Mat acc = cv::Mat::zeros(n, n, CV_32F);
   for (const auto& [g, amplitude] : octaves) acc += amplitude * periodic_noise(rng, n, std::min(g, n));
@@ -79,9 +80,11 @@ void scatter_shapes(cv::Mat& img, cv::RNG& rng, cv::Vec3b base, int count, int m
     const cv::Scalar colour = jitter(rng, base, contrast);
     if (rng.uniform(0, 2) == 0) {
       const cv::Size s(size, std::max(3, static_cast<int>(size * rng.uniform(0.3, 1.5))));
-      draw_wrapped(n, [&](cv::Point o) { cv::rectangle(img, cv::Rect(p + o, s), colour, cv::FILLED, cv::LINE_8); });
+      draw_wrapped(
+          n, [&](cv::Point o) { cv::rectangle(img, cv::Rect(p + o, s), colour, cv::FILLED, cv::LINE_8); });
     } else {
-      draw_wrapped(n, [&](cv::Point o) { cv::circle(img, p + o, size / 2, colour, cv::FILLED, cv::LINE_AA); });
+      draw_wrapped(n,
+                   [&](cv::Point o) { cv::circle(img, p + o, size / 2, colour, cv::FILLED, cv::LINE_AA); });
     }
   }
 }
@@ -118,7 +121,9 @@ cv::Mat wood(cv::RNG& rng, int n, cv::Vec3b base) {
   for (int i = 0; i < n / 3; ++i) {
     const int y = rng.uniform(0, n), x = rng.uniform(0, n), len = rng.uniform(n / 16, n / 3);
     const cv::Scalar c = jitter(rng, cv::Vec3b(base[0] / 2, base[1] / 2, base[2] / 2), 20);
-    draw_wrapped(n, [&](cv::Point o) { cv::line(img, cv::Point(x, y) + o, cv::Point(x + len, y) + o, c, rng.uniform(1, 4)); });
+    draw_wrapped(n, [&](cv::Point o) {
+      cv::line(img, cv::Point(x, y) + o, cv::Point(x + len, y) + o, c, rng.uniform(1, 4));
+    });
   }
   scatter_shapes(img, rng, base, n / 10, n / 6, 60);  // knots, stickers, scratches
   wrap_blur(img);
@@ -158,7 +163,8 @@ cv::Mat ceiling(cv::RNG& rng, int n, double texels_per_metre) {
   for (int cy = 0; cy < cells; ++cy)
     for (int cx = 0; cx < cells; ++cx)
       if ((cx % 4 == 1 && cy % 3 == 1) || rng.uniform(0, 12) == 0) {  // light panels
-        cv::rectangle(img, cv::Rect(cx * step + 4, cy * step + 4, step - 8, step - 8), cv::Scalar(252, 253, 255), cv::FILLED);
+        cv::rectangle(img, cv::Rect(cx * step + 4, cy * step + 4, step - 8, step - 8),
+                      cv::Scalar(252, 253, 255), cv::FILLED);
         cv::line(img, {cx * step + step / 2, cy * step + 4}, {cx * step + step / 2, cy * step + step - 4},
                  cv::Scalar(210, 212, 215), 2);
       }
@@ -173,7 +179,8 @@ cv::Mat ceiling(cv::RNG& rng, int n, double texels_per_metre) {
 cv::Mat cloth(cv::RNG& rng, int n) {
   cv::Mat img(n, n, CV_8UC3, cv::Scalar(200, 200, 200));
   const int stripe = std::max(4, n / 32);
-  for (int y = 0; y < n; y += 2 * stripe) cv::rectangle(img, cv::Rect(0, y, n, stripe), cv::Scalar(120, 120, 120), cv::FILLED);
+  for (int y = 0; y < n; y += 2 * stripe)
+    cv::rectangle(img, cv::Rect(0, y, n, stripe), cv::Scalar(120, 120, 120), cv::FILLED);
   add_noise(img, rng, {{8, 12.f}, {64, 10.f}}, {1.f, 1.f, 1.f});
   scatter_shapes(img, rng, cv::Vec3b(160, 160, 160), n / 8, n / 8, 80);
   return img;
@@ -231,8 +238,11 @@ std::shared_ptr<const SceneTextures> build(std::uint32_t seed, int n, double tpm
   auto t = std::make_shared<SceneTextures>();
   t->texels_per_metre = tpm;
   t->materials.resize(kMaterialCount);
-  auto rng_for = [seed](int what) { return cv::RNG(mix_hash(seed * 1000003ull + static_cast<std::uint64_t>(what))); };
-  const cv::Vec3b wall_bases[kMaterialWallCount] = {{200, 210, 220}, {170, 200, 215}, {215, 205, 190}, {190, 215, 200}};
+  auto rng_for = [seed](int what) {
+    return cv::RNG(mix_hash(seed * 1000003ull + static_cast<std::uint64_t>(what)));
+  };
+  const cv::Vec3b wall_bases[kMaterialWallCount] = {
+      {200, 210, 220}, {170, 200, 215}, {215, 205, 190}, {190, 215, 200}};
   for (int i = 0; i < kMaterialWallCount; ++i) {
     cv::RNG rng = rng_for(i);
     t->materials[kMaterialWall0 + i] = pyramid(plaster(rng, n, wall_bases[i]), true);
@@ -270,7 +280,8 @@ std::shared_ptr<const SceneTextures> build(std::uint32_t seed, int n, double tpm
 
 }  // namespace
 
-std::shared_ptr<const SceneTextures> make_scene_textures(std::uint32_t seed, int size, double texels_per_metre) {
+std::shared_ptr<const SceneTextures> make_scene_textures(std::uint32_t seed, int size,
+                                                         double texels_per_metre) {
   static std::mutex mutex;
   static std::map<std::tuple<std::uint32_t, int, double>, std::shared_ptr<const SceneTextures>> cache;
   std::lock_guard<std::mutex> lock(mutex);

@@ -31,7 +31,8 @@ struct SceneTextures {
 };
 
 // Cached per (seed, size, texels_per_metre): scenes built with the same options share their textures.
-std::shared_ptr<const SceneTextures> make_scene_textures(std::uint32_t seed, int size, double texels_per_metre);
+std::shared_ptr<const SceneTextures> make_scene_textures(std::uint32_t seed, int size,
+                                                         double texels_per_metre);
 
 // A well-mixed 64-bit hash (splitmix64), for per-surface seeds.
 std::uint64_t mix_hash(std::uint64_t x);

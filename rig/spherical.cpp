@@ -59,12 +59,18 @@ CubeFaceAxes cube_face_axes(CubeFace face) {
   // Camera frame: +x forward, +y left, +z up. Side faces keep "down" = -z; up/down faces keep "right" = -y
   // (the camera's right) so that their tops touch the front face's top and bottom.
   switch (face) {
-    case CubeFace::kFront: return {V(1, 0, 0), V(0, -1, 0), V(0, 0, -1)};
-    case CubeFace::kBack: return {V(-1, 0, 0), V(0, 1, 0), V(0, 0, -1)};
-    case CubeFace::kLeft: return {V(0, 1, 0), V(1, 0, 0), V(0, 0, -1)};
-    case CubeFace::kRight: return {V(0, -1, 0), V(-1, 0, 0), V(0, 0, -1)};
-    case CubeFace::kUp: return {V(0, 0, 1), V(0, -1, 0), V(1, 0, 0)};
-    case CubeFace::kDown: return {V(0, 0, -1), V(0, -1, 0), V(-1, 0, 0)};
+    case CubeFace::kFront:
+      return {V(1, 0, 0), V(0, -1, 0), V(0, 0, -1)};
+    case CubeFace::kBack:
+      return {V(-1, 0, 0), V(0, 1, 0), V(0, 0, -1)};
+    case CubeFace::kLeft:
+      return {V(0, 1, 0), V(1, 0, 0), V(0, 0, -1)};
+    case CubeFace::kRight:
+      return {V(0, -1, 0), V(-1, 0, 0), V(0, 0, -1)};
+    case CubeFace::kUp:
+      return {V(0, 0, 1), V(0, -1, 0), V(1, 0, 0)};
+    case CubeFace::kDown:
+      return {V(0, 0, -1), V(0, -1, 0), V(-1, 0, 0)};
   }
   return {V(1, 0, 0), V(0, -1, 0), V(0, 0, -1)};
 }

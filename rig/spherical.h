@@ -1,6 +1,7 @@
 #pragma once
 // Spherical camera geometry, per ARCHITECTURE.md:
-// - equirectangular w x h; continuous pixel coordinates (x, y) with pixel (u, v) covering [u, u+1) x [v, v+1);
+// - equirectangular w x h; continuous pixel coordinates (x, y) with pixel (u, v) covering [u, u+1) x [v,
+// v+1);
 //   azimuth = x / w * 2pi - pi (column 0 starts at -180 deg, the centre column is the camera's forward),
 //   elevation = pi/2 - y / h * pi (row 0 is the zenith);
 // - azimuth grows to the right (clockwise seen from above), so a bearing at azimuth a from a camera with

@@ -8,8 +8,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <opencv2/core/utility.hpp>
 #include <functional>
+#include <opencv2/core/utility.hpp>
 #include <set>
 
 #include "model/error.h"
@@ -40,7 +40,8 @@ bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vec
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const auto& a = poly[i];
     const auto& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
       inside = !inside;
   }
   return inside;
@@ -51,12 +52,13 @@ bool is_full_height(SurfaceKind k) { return k == SurfaceKind::kWall || k == Surf
 // ---- people
 struct PersonTrack {
   Eigen::Vector2d a, b;
-  double speed = 1.2;   // m/s
-  double phase = 0.0;   // metres along the back-and-forth walk at t = 0
+  double speed = 1.2;  // m/s
+  double phase = 0.0;  // metres along the back-and-forth walk at t = 0
   cv::Vec3f shirt, trousers;
 };
 
-bool segment_blocked(const SyntheticScene& scene, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double clearance) {
+bool segment_blocked(const SyntheticScene& scene, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+                     double clearance) {
   for (const auto& f : scene.faces) {
     // Distance between segments pq and ab is small, or they cross.
     const Eigen::Vector2d e = f.b - f.a, d = q - p;
@@ -87,7 +89,8 @@ std::vector<PersonTrack> people_tracks(const SyntheticScene& scene, int count, s
     PersonTrack t;
     bool found = false;
     for (int attempt = 0; attempt < 500 && !found; ++attempt) {
-      t.a = {rng.uniform(scene.floor_min.x(), scene.floor_max.x()), rng.uniform(scene.floor_min.y(), scene.floor_max.y())};
+      t.a = {rng.uniform(scene.floor_min.x(), scene.floor_max.x()),
+             rng.uniform(scene.floor_min.y(), scene.floor_max.y())};
       const double angle = rng.uniform(0.0, 2 * kPi), length = rng.uniform(2.0, 7.0);
       t.b = t.a + length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
       found = !segment_blocked(scene, t.a, t.b, 0.4);
@@ -129,13 +132,13 @@ std::vector<PersonNow> people_now(const SyntheticScene& scene, const RenderOptio
 
 // ---- the per-column ray cast
 struct Crossing {
-  double d;           // horizontal distance from the origin, metres
-  double u;           // texture coordinate along the surface, metres
-  float top;          // height of the face's top
+  double d;             // horizontal distance from the origin, metres
+  double u;             // texture coordinate along the surface, metres
+  float top;            // height of the face's top
   float cos_incidence;  // |normal . horizontal ray direction|
   float spread;         // 1 / sqrt(cos_incidence), clamped: how much wider a pixel's footprint is on the face
-  int face;           // index into scene.faces, or -1 - person
-  int footprint;      // footprint toggled by crossing this face (furniture: index; person: nfoot + p), -1 none
+  int face;             // index into scene.faces, or -1 - person
+  int footprint;  // footprint toggled by crossing this face (furniture: index; person: nfoot + p), -1 none
   SurfaceKind kind;
 };
 
@@ -168,7 +171,8 @@ FrameContext make_context(const SyntheticScene& scene, const RenderOptions& o, c
   for (const auto& p : c.people) c.footprint_tops.push_back(static_cast<float>(p.pose.height));
   for (std::size_t i = 0; i < scene.footprints.size(); ++i)
     if (point_in_polygon(scene.footprints[i].points, c.origin)) c.start_footprint = static_cast<int>(i);
-  c.gain = static_cast<float>(1.0 + o.exposure_drift * std::sin(2 * kPi * frame_index / o.exposure_period_frames + 0.7));
+  c.gain = static_cast<float>(1.0 + o.exposure_drift *
+                                        std::sin(2 * kPi * frame_index / o.exposure_period_frames + 0.7));
   return c;
 }
 
@@ -218,15 +222,21 @@ std::shared_ptr<const SceneGrid> build_grid(const SyntheticScene& scene) {
   for (std::size_t i = 0; i < scene.faces.size(); ++i) {
     const SceneFace& f = scene.faces[i];
     const Eigen::Vector2d lo = f.a.cwiseMin(f.b), hi = f.a.cwiseMax(f.b);
-    const int x0 = std::clamp(static_cast<int>(std::floor((lo.x() - eps - grid->origin.x()) / grid->cell)), 0, grid->nx - 1);
-    const int x1 = std::clamp(static_cast<int>(std::floor((hi.x() + eps - grid->origin.x()) / grid->cell)), 0, grid->nx - 1);
-    const int y0 = std::clamp(static_cast<int>(std::floor((lo.y() - eps - grid->origin.y()) / grid->cell)), 0, grid->ny - 1);
-    const int y1 = std::clamp(static_cast<int>(std::floor((hi.y() + eps - grid->origin.y()) / grid->cell)), 0, grid->ny - 1);
+    const int x0 = std::clamp(static_cast<int>(std::floor((lo.x() - eps - grid->origin.x()) / grid->cell)), 0,
+                              grid->nx - 1);
+    const int x1 = std::clamp(static_cast<int>(std::floor((hi.x() + eps - grid->origin.x()) / grid->cell)), 0,
+                              grid->nx - 1);
+    const int y0 = std::clamp(static_cast<int>(std::floor((lo.y() - eps - grid->origin.y()) / grid->cell)), 0,
+                              grid->ny - 1);
+    const int y1 = std::clamp(static_cast<int>(std::floor((hi.y() + eps - grid->origin.y()) / grid->cell)), 0,
+                              grid->ny - 1);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
-        const Eigen::Vector2d clo = grid->origin + grid->cell * Eigen::Vector2d(x, y) - Eigen::Vector2d::Constant(eps);
+        const Eigen::Vector2d clo =
+            grid->origin + grid->cell * Eigen::Vector2d(x, y) - Eigen::Vector2d::Constant(eps);
         const Eigen::Vector2d chi = clo + Eigen::Vector2d::Constant(grid->cell + 2 * eps);
-        if (segment_touches_box(f.a, f.b, clo, chi)) cells[static_cast<std::size_t>(y) * grid->nx + x].push_back(static_cast<int>(i));
+        if (segment_touches_box(f.a, f.b, clo, chi))
+          cells[static_cast<std::size_t>(y) * grid->nx + x].push_back(static_cast<int>(i));
       }
   }
   grid->start.reserve(cells.size() + 1);
@@ -264,8 +274,10 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
   // Exit from the floor rectangle (slabs).
   double exit = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 2; ++k) {
-    if (dir[k] > 0) exit = std::min(exit, (scene.floor_max[k] - ctx.origin[k]) / dir[k]);
-    else if (dir[k] < 0) exit = std::min(exit, (scene.floor_min[k] - ctx.origin[k]) / dir[k]);
+    if (dir[k] > 0)
+      exit = std::min(exit, (scene.floor_max[k] - ctx.origin[k]) / dir[k]);
+    else if (dir[k] < 0)
+      exit = std::min(exit, (scene.floor_min[k] - ctx.origin[k]) / dir[k]);
   }
   ray.d_exit = std::max(0.0, exit);
   double nearest_wall = std::numeric_limits<double>::infinity();
@@ -299,8 +311,10 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     const int step_x = dir.x() > 0 ? 1 : (dir.x() < 0 ? -1 : 0);
     const int step_y = dir.y() > 0 ? 1 : (dir.y() < 0 ? -1 : 0);
     const double inf = std::numeric_limits<double>::infinity();
-    double t_max_x = step_x ? (grid->origin.x() + (ix + (step_x > 0)) * grid->cell - ctx.origin.x()) / dir.x() : inf;
-    double t_max_y = step_y ? (grid->origin.y() + (iy + (step_y > 0)) * grid->cell - ctx.origin.y()) / dir.y() : inf;
+    double t_max_x =
+        step_x ? (grid->origin.x() + (ix + (step_x > 0)) * grid->cell - ctx.origin.x()) / dir.x() : inf;
+    double t_max_y =
+        step_y ? (grid->origin.y() + (iy + (step_y > 0)) * grid->cell - ctx.origin.y()) / dir.y() : inf;
     const double t_delta_x = step_x ? grid->cell / std::abs(dir.x()) : inf;
     const double t_delta_y = step_y ? grid->cell / std::abs(dir.y()) : inf;
     while (true) {
@@ -336,11 +350,15 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
     const int id = -1 - static_cast<int>(p);
     const float incidence = static_cast<float>(root / person.radius);
     const float spread = 1.0f / std::sqrt(std::max(incidence, 0.02f));
-    if (t1 > 0) ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
-    ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), incidence, spread, id, nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+    if (t1 > 0)
+      ray.crossings.push_back({t1, around(t1), static_cast<float>(person.height), incidence, spread, id,
+                               nfoot + static_cast<int>(p), SurfaceKind::kPerson});
+    ray.crossings.push_back({t2, around(t2), static_cast<float>(person.height), incidence, spread, id,
+                             nfoot + static_cast<int>(p), SurfaceKind::kPerson});
   }
-  std::sort(ray.crossings.begin(), ray.crossings.end(),
-            [](const Crossing& a, const Crossing& b) { return a.d < b.d || (a.d == b.d && a.face < b.face); });
+  std::sort(ray.crossings.begin(), ray.crossings.end(), [](const Crossing& a, const Crossing& b) {
+    return a.d < b.d || (a.d == b.d && a.face < b.face);
+  });
   for (std::size_t i = 0; i < ray.crossings.size(); ++i)
     if (is_full_height(ray.crossings[i].kind)) {
       ray.crossings.resize(i + 1);
@@ -350,13 +368,16 @@ void cast_column(const FrameContext& ctx, const Eigen::Vector2d& dir, ColumnRay&
 
 // What every ray of one panorama row (one elevation) shares.
 struct RayRow {
-  double s = 0.0;       // tan(elevation): height gained per horizontal metre
-  double inv_s = 0.0;   // 1 / s (0 when s == 0)
+  double s = 0.0;      // tan(elevation): height gained per horizontal metre
+  double inv_s = 0.0;  // 1 / s (0 when s == 0)
   double cos_e = 1.0, sin_e = 0.0, sec_e = 1.0;
   double floor_spread = 1.0;  // 1 / sqrt(|sin e|), clamped: footprint growth on horizontal surfaces
   double wall_spread = 1.0;   // 1 / sqrt(cos e), clamped: footprint growth on vertical surfaces
   explicit RayRow(double slope, double cos_elevation, double sin_elevation)
-      : s(slope), inv_s(slope != 0.0 ? 1.0 / slope : 0.0), cos_e(cos_elevation), sin_e(sin_elevation),
+      : s(slope),
+        inv_s(slope != 0.0 ? 1.0 / slope : 0.0),
+        cos_e(cos_elevation),
+        sin_e(sin_elevation),
         sec_e(1.0 / std::max(cos_elevation, 1e-300)),
         floor_spread(1.0 / std::sqrt(std::max(std::abs(sin_elevation), 0.02))),
         wall_spread(1.0 / std::sqrt(std::max(cos_elevation, 0.02))) {}
@@ -382,8 +403,10 @@ inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, const RayRow
       if (dh < limit) {
         hit.d = dh;
         hit.footprint = inside;
-        hit.kind = inside >= 0 ? (inside < static_cast<int>(ctx.scene->footprints.size()) ? SurfaceKind::kFurnitureTop : SurfaceKind::kPerson)
-                               : SurfaceKind::kFloor;
+        hit.kind = inside >= 0
+                       ? (inside < static_cast<int>(ctx.scene->footprints.size()) ? SurfaceKind::kFurnitureTop
+                                                                                  : SurfaceKind::kPerson)
+                       : SurfaceKind::kFloor;
         return true;
       }
     } else if (s > 0) {
@@ -399,7 +422,8 @@ inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, const RayRow
   Hit hit;
   for (const Crossing& c : ray.crossings) {
     if (horizontal(c.d, hit)) {
-      if ((hit.kind == SurfaceKind::kFloor || hit.kind == SurfaceKind::kCeiling) && hit.d > ray.d_exit) return Hit{};
+      if ((hit.kind == SurfaceKind::kFloor || hit.kind == SurfaceKind::kCeiling) && hit.d > ray.d_exit)
+        return Hit{};
       return hit;
     }
     const double z = cam_z + s * c.d;
@@ -475,7 +499,8 @@ inline cv::Vec3f sample_level(const TexturePyramid& t, int level, double x, doub
   return sample_bilinear(t.levels[level], (x - 0.5) * scale + 0.5, (y - 0.5) * scale + 0.5, periodic);
 }
 
-inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic) {
+inline cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint,
+                                bool periodic) {
   const int top = static_cast<int>(t.levels.size()) - 1;
   if (!(footprint > 1.0)) return sample_level(t, 0, x, y, periodic);
   const double lod = std::log2(footprint);
@@ -495,8 +520,8 @@ const cv::Vec3b kSky(235, 206, 160);
 
 // Colour of a hit. pixel_angle: the angular size of a pixel (radians), for mip selection; distance: along
 // the 3-D ray; cos_e: cosine of the ray's elevation; sin_e: its sine.
-cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, const RayRow& row, double distance,
-                double pixel_angle) {
+cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, const RayRow& row,
+                double distance, double pixel_angle) {
   const double s = row.s;
   const SyntheticScene& scene = *ctx.scene;
   const SceneTextures& tex = *scene.textures;
@@ -514,24 +539,29 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, c
       const double footprint = base_footprint * row.floor_spread;
       if (hit.kind == SurfaceKind::kFurnitureTop) {
         const SceneFootprint& fp = scene.footprints[hit.footprint];
-        const cv::Vec3f c = sample_texture(tex.materials[kMaterialFurnitureTop], (p.x() + fp.texture_offset.x()) * tpm,
-                                           -(p.y() + fp.texture_offset.y()) * tpm, footprint, true);
+        const cv::Vec3f c =
+            sample_texture(tex.materials[kMaterialFurnitureTop], (p.x() + fp.texture_offset.x()) * tpm,
+                           -(p.y() + fp.texture_offset.y()) * tpm, footprint, true);
         colour = c.mul(fp.tint) * 0.97f;
       } else if (hit.kind == SurfaceKind::kFloor) {
-        colour = sample_texture(tex.materials[kMaterialFloor], p.x() * tpm, -p.y() * tpm, footprint, true) * 0.9f;
+        colour =
+            sample_texture(tex.materials[kMaterialFloor], p.x() * tpm, -p.y() * tpm, footprint, true) * 0.9f;
       } else {
         colour = sample_texture(tex.materials[kMaterialCeiling], p.x() * tpm, -p.y() * tpm, footprint, true);
       }
       break;
     }
     case SurfaceKind::kPerson: {
-      const PersonNow& person = ctx.people[hit.crossing ? -1 - hit.crossing->face : hit.footprint - static_cast<int>(scene.footprints.size())];
+      const PersonNow& person =
+          ctx.people[hit.crossing ? -1 - hit.crossing->face
+                                  : hit.footprint - static_cast<int>(scene.footprints.size())];
       if (!hit.crossing) {  // the top of the head
         colour = cv::Vec3f(60, 70, 90);
         break;
       }
       const double footprint = base_footprint * hit.crossing->spread * row.wall_spread;
-      const cv::Vec3f c = sample_texture(tex.materials[kMaterialCloth], hit.crossing->u * tpm, (2.0 - z) * tpm, footprint, true);
+      const cv::Vec3f c = sample_texture(tex.materials[kMaterialCloth], hit.crossing->u * tpm,
+                                         (2.0 - z) * tpm, footprint, true);
       if (z > 1.5)
         colour = cv::Vec3f(110, 140, 190) + 0.2f * c;  // face and hair
       else if (z > 0.85)
@@ -550,12 +580,15 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, c
         if (c.u >= p.u0 && c.u <= p.u1 && z >= p.z0 && z <= p.z1) {
           const TexturePyramid& img = tex.posters[p.image];
           const double px_per_m = img.levels[0].cols / (p.u1 - p.u0);
-          colour = sample_texture(img, (c.u - p.u0) * px_per_m, (p.z1 - z) / (p.z1 - p.z0) * img.levels[0].rows,
-                                  footprint * px_per_m / tpm, false) * f.shade;
+          colour =
+              sample_texture(img, (c.u - p.u0) * px_per_m, (p.z1 - z) / (p.z1 - p.z0) * img.levels[0].rows,
+                             footprint * px_per_m / tpm, false) *
+              f.shade;
           return to_bgr(colour * ctx.gain);
         }
       }
-      const cv::Vec3f t = sample_texture(tex.materials[f.material], c.u * tpm, (f.top - z) * tpm, footprint, true);
+      const cv::Vec3f t =
+          sample_texture(tex.materials[f.material], c.u * tpm, (f.top - z) * tpm, footprint, true);
       // A little darker near the floor (a cheap stand-in for ambient occlusion).
       const float occlusion = static_cast<float>(std::min(1.0, 0.8 + z));
       colour = t.mul(f.tint) * (f.shade * occlusion);
@@ -580,10 +613,13 @@ void add_noise(cv::Mat& rgb, const RenderOptions& o, int frame_index) {
 // ---- options
 std::string SceneOptions::check() const {
   if (!(wall_height > 0.0) || wall_height > 100.0) return "wall_height must be in (0, 100] m";
-  if (!(camera_height > 0.0) || camera_height >= wall_height) return "camera_height must be in (0, wall_height)";
-  if (!(furniture_height > 0.0) || furniture_height > wall_height) return "furniture_height must be in (0, wall_height]";
+  if (!(camera_height > 0.0) || camera_height >= wall_height)
+    return "camera_height must be in (0, wall_height)";
+  if (!(furniture_height > 0.0) || furniture_height > wall_height)
+    return "furniture_height must be in (0, wall_height]";
   for (const auto& [layer, h] : furniture_layer_heights)
-    if (!(h > 0.0) || h > wall_height) return "furniture height of layer '" + layer + "' must be in (0, wall_height]";
+    if (!(h > 0.0) || h > wall_height)
+      return "furniture height of layer '" + layer + "' must be in (0, wall_height]";
   if (!(floor_margin >= 0.0)) return "floor_margin must be >= 0";
   if (texture_size < 16 || texture_size > 8192 || (texture_size & (texture_size - 1)) != 0)
     return "texture_size must be a power of two in [16, 8192]";
@@ -592,7 +628,8 @@ std::string SceneOptions::check() const {
 }
 
 std::string RenderOptions::check() const {
-  if (width < 8 || height < 4 || width > 32768 || height > 16384) return "size must be between 8x4 and 32768x16384";
+  if (width < 8 || height < 4 || width > 32768 || height > 16384)
+    return "size must be between 8x4 and 32768x16384";
   if (threads < 0) return "threads must be >= 0";
   if (!(noise_sigma >= 0.0) || noise_sigma > 100.0) return "noise_sigma must be in [0, 100]";
   if (!(exposure_drift >= 0.0) || exposure_drift >= 1.0) return "exposure_drift must be in [0, 1)";
@@ -616,7 +653,8 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
     return !l || l->visible;
   };
   auto is_column = [&](const std::string& layer) {
-    return options.column_layers.empty() ? contains_any(layer, {"COL", "PILLAR"}) : listed(options.column_layers, layer);
+    return options.column_layers.empty() ? contains_any(layer, {"COL", "PILLAR"})
+                                         : listed(options.column_layers, layer);
   };
   auto is_furniture = [&](const std::string& layer) {
     return options.furniture_layers.empty() ? contains_any(layer, {"FURN", "DESK", "TABLE", "EQUIP"})
@@ -627,7 +665,8 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
     return it == options.furniture_layer_heights.end() ? options.furniture_height : it->second;
   };
 
-  auto add_face = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, SurfaceKind kind, int footprint) {
+  auto add_face = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, SurfaceKind kind,
+                      int footprint) {
     if ((b - a).norm() < 1e-9) return;
     SceneFace f;
     f.a = a;
@@ -639,7 +678,8 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
   };
   std::set<std::string> furniture_layers_with_outlines;
   for (const auto& o : plan.outlines)
-    if (o.closed && o.points.size() >= 3 && selected(o.layer) && is_furniture(o.layer) && !is_column(o.layer)) {
+    if (o.closed && o.points.size() >= 3 && selected(o.layer) && is_furniture(o.layer) &&
+        !is_column(o.layer)) {
       furniture_layers_with_outlines.insert(o.layer);
       SceneFootprint fp;
       fp.points = o.points;
@@ -679,9 +719,14 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
     const std::uint64_t h = mix_hash(seed * 0x100000001b3ull + i);
     auto unit = [h](int k) { return hash_unit(h + static_cast<std::uint64_t>(k)); };
     switch (f.kind) {
-      case SurfaceKind::kPillar: f.material = kMaterialPillar; break;
-      case SurfaceKind::kFurnitureSide: f.material = kMaterialFurnitureSide; break;
-      default: f.material = kMaterialWall0 + static_cast<int>(unit(1) * kMaterialWallCount) % kMaterialWallCount;
+      case SurfaceKind::kPillar:
+        f.material = kMaterialPillar;
+        break;
+      case SurfaceKind::kFurnitureSide:
+        f.material = kMaterialFurnitureSide;
+        break;
+      default:
+        f.material = kMaterialWall0 + static_cast<int>(unit(1) * kMaterialWallCount) % kMaterialWallCount;
     }
     f.u_offset = unit(2) * 64.0;
     f.tint = cv::Vec3f(static_cast<float>(0.85 + 0.3 * unit(3)), static_cast<float>(0.85 + 0.3 * unit(4)),
@@ -708,7 +753,8 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
     const std::uint64_t h = mix_hash(seed * 0x9e3779b1ull + 77 + i);
     SceneFootprint& fp = scene.footprints[i];
     fp.material = kMaterialFurnitureTop;
-    fp.tint = cv::Vec3f(static_cast<float>(0.8 + 0.4 * hash_unit(h)), static_cast<float>(0.8 + 0.4 * hash_unit(h + 1)),
+    fp.tint = cv::Vec3f(static_cast<float>(0.8 + 0.4 * hash_unit(h)),
+                        static_cast<float>(0.8 + 0.4 * hash_unit(h + 1)),
                         static_cast<float>(0.8 + 0.4 * hash_unit(h + 2)));
     fp.texture_offset = Eigen::Vector2d(hash_unit(h + 3) * 16.0, hash_unit(h + 4) * 16.0);
   }
@@ -718,7 +764,8 @@ SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& 
 }
 
 // ---- rendering
-RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options) {
+RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose,
+                                 const RenderOptions& options) {
   RenderedPanorama out;
   render_panorama(scene, pose, options, out);
   return out;
@@ -729,12 +776,14 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
   if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
   if (!scene.textures) throw Error("render_panorama: the scene was not built with build_synthetic_scene");
   const int w = options.width, h = options.height;
-  const FrameContext ctx = make_context(scene, options, {pose.x, pose.y, scene.options.camera_height}, pose.index);
+  const FrameContext ctx =
+      make_context(scene, options, {pose.x, pose.y, scene.options.camera_height}, pose.index);
 
   std::vector<ColumnRay> columns(w);
   // threads == 1 keeps everything on the calling thread; otherwise OpenCV's pool does the work.
   const int stripes = std::max(1, cv::getNumThreads());
-  auto run = [&options](const cv::Range& range, int nstripes, const std::function<void(const cv::Range&)>& body) {
+  auto run = [&options](const cv::Range& range, int nstripes,
+                        const std::function<void(const cv::Range&)>& body) {
     if (options.threads == 1)
       body(range);
     else
@@ -830,8 +879,9 @@ RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, con
   return result;
 }
 
-RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin, const cv::Mat& directions,
-                                   double pixel_angle, const RenderOptions& options, int frame_index) {
+RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin,
+                                   const cv::Mat& directions, double pixel_angle,
+                                   const RenderOptions& options, int frame_index) {
   if (!scene.textures) throw Error("render_directions: the scene was not built with build_synthetic_scene");
   if (directions.type() != CV_64FC3) throw Error("render_directions: directions must be CV_64FC3");
   if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
@@ -854,7 +904,7 @@ RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vec
           continue;
         }
         FaceStamps stamps;
-  cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray, stamps);
+        cast_column(ctx, Eigen::Vector2d(d.x(), d.y()) / horizontal, ray, stamps);
         const RayRow row(d.z() / horizontal, horizontal, d.z());
         const Hit hit = first_hit(ctx, ray, row);
         const double distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
@@ -870,7 +920,8 @@ RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vec
   return out;
 }
 
-std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options, int frame_index) {
+std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options,
+                                        int frame_index) {
   std::vector<PersonPose> out;
   for (const auto& p : people_now(scene, options, frame_index)) out.push_back(p.pose);
   return out;

@@ -39,33 +39,41 @@ struct SceneOptions {
   // Closed outlines on these layers become furniture boxes. Empty = guess: names containing FURN, DESK,
   // TABLE or EQUIP (any case).
   std::vector<std::string> furniture_layers;
-  double furniture_height = 0.75;                      // metres, for furniture layers not listed below
+  double furniture_height = 0.75;                         // metres, for furniture layers not listed below
   std::map<std::string, double> furniture_layer_heights;  // per-layer override, metres
-  double floor_margin = 1.0;   // metres the floor and ceiling extend beyond the plan's extents
+  double floor_margin = 1.0;       // metres the floor and ceiling extend beyond the plan's extents
   std::uint32_t texture_seed = 1;  // every surface's texture is a deterministic function of this and its id
-  int texture_size = 1024;     // texels per side of each procedural texture (power of two)
+  int texture_size = 1024;         // texels per side of each procedural texture (power of two)
   double texels_per_metre = 256.0;
-  bool use_grid = true;        // cast rays through a uniform grid over the faces (off = test every face)
+  bool use_grid = true;  // cast rays through a uniform grid over the faces (off = test every face)
 
   // Empty when the options make sense; otherwise says what is wrong.
   std::string check() const;
 };
 
 // The kind of surface a ray hit (also used for shading and by tests).
-enum class SurfaceKind : std::uint8_t { kNone = 0, kWall, kPillar, kFurnitureSide, kFurnitureTop, kFloor, kCeiling,
-                                        kPerson };
+enum class SurfaceKind : std::uint8_t {
+  kNone = 0,
+  kWall,
+  kPillar,
+  kFurnitureSide,
+  kFurnitureTop,
+  kFloor,
+  kCeiling,
+  kPerson
+};
 
 // One vertical face of the scene: a plan segment extruded from z = 0 to `top`.
 struct SceneFace {
   Eigen::Vector2d a = Eigen::Vector2d::Zero();
   Eigen::Vector2d b = Eigen::Vector2d::Zero();
-  double top = 0.0;            // metres
+  double top = 0.0;  // metres
   SurfaceKind kind = SurfaceKind::kWall;
-  int footprint = -1;          // index into SyntheticScene::footprints for furniture sides, -1 otherwise
-  int material = 0;            // which procedural texture
-  double u_offset = 0.0;       // texture offset along the face, metres (per-surface seed)
-  cv::Vec3f tint{1, 1, 1};     // per-surface colour multiplier (BGR)
-  float shade = 1.0f;          // diffuse lighting factor (ambient + a few directional lights)
+  int footprint = -1;       // index into SyntheticScene::footprints for furniture sides, -1 otherwise
+  int material = 0;         // which procedural texture
+  double u_offset = 0.0;    // texture offset along the face, metres (per-surface seed)
+  cv::Vec3f tint{1, 1, 1};  // per-surface colour multiplier (BGR)
+  float shade = 1.0f;       // diffuse lighting factor (ambient + a few directional lights)
   int poster_begin = 0, poster_end = 0;  // posters on this face: SyntheticScene::posters[begin, end)
 };
 
@@ -93,7 +101,8 @@ class SyntheticScene {
   std::vector<SceneFace> faces;
   std::vector<SceneFootprint> footprints;
   std::vector<ScenePoster> posters;
-  Eigen::Vector2d floor_min = Eigen::Vector2d::Zero(), floor_max = Eigen::Vector2d::Zero();  // floor rectangle
+  Eigen::Vector2d floor_min = Eigen::Vector2d::Zero(),
+                  floor_max = Eigen::Vector2d::Zero();  // floor rectangle
   std::shared_ptr<const SceneTextures> textures;
   std::shared_ptr<const SceneGrid> grid;
 };
@@ -107,14 +116,14 @@ struct RenderOptions {
   bool depth = true;  // also fill RenderedPanorama::depth
   int threads = 0;    // 1 = only the calling thread; otherwise OpenCV's thread pool (all cores)
   // Realism switches, all off by default.
-  double noise_sigma = 0.0;        // Gaussian sensor noise, in 8-bit grey levels; seeded by noise_seed and frame
+  double noise_sigma = 0.0;  // Gaussian sensor noise, in 8-bit grey levels; seeded by noise_seed and frame
   std::uint32_t noise_seed = 7;
-  double exposure_drift = 0.0;     // relative amplitude of a slow gain drift over frames (e.g. 0.15)
+  double exposure_drift = 0.0;  // relative amplitude of a slow gain drift over frames (e.g. 0.15)
   double exposure_period_frames = 240.0;
-  int people = 0;                  // moving people (textured cylinders)
+  int people = 0;  // moving people (textured cylinders)
   std::uint32_t people_seed = 11;
-  double frame_rate = 30.0;        // frames per second: a frame's time is index / frame_rate (people move)
-  int jpeg_quality = 92;           // used by writers of the frames (rig/ itself encodes nothing)
+  double frame_rate = 30.0;  // frames per second: a frame's time is index / frame_rate (people move)
+  int jpeg_quality = 92;     // used by writers of the frames (rig/ itself encodes nothing)
 
   std::string check() const;
 };
@@ -127,7 +136,8 @@ struct RenderedPanorama {
 // Renders the panorama seen from (pose.x, pose.y, camera_height) with heading pose.heading. The result is a
 // deterministic function of the scene, the pose (including pose.index, which times people, noise and drift)
 // and the options; thread count does not change it.
-RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options);
+RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose,
+                                 const RenderOptions& options);
 // Same, reusing `out`'s buffers when their size fits (saves page faults when rendering many frames).
 void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options,
                      RenderedPanorama& out);
@@ -145,8 +155,9 @@ RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, con
 // Renders an image whose pixel (u, v) looks from `origin` along directions(v, u) (CV_64FC3, plan frame, need
 // not be unit): pinhole heads, cube faces. `pixel_angle` (radians) is the angular size of a pixel, for
 // texture filtering. Depth is the distance along the ray (0 = no hit).
-RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin, const cv::Mat& directions,
-                                   double pixel_angle, const RenderOptions& options, int frame_index = 0);
+RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin,
+                                   const cv::Mat& directions, double pixel_angle,
+                                   const RenderOptions& options, int frame_index = 0);
 
 // Where the people are at a frame (centre, radius, height), for tests and overlays.
 struct PersonPose {
@@ -155,19 +166,20 @@ struct PersonPose {
   double height = 1.75;
   int id = 0;
 };
-std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options, int frame_index);
+std::vector<PersonPose> people_at_frame(const SyntheticScene& scene, const RenderOptions& options,
+                                        int frame_index);
 
 // ---- automatic walk
 struct AutoWalkOptions {
-  double step = 0.08;            // metres between frames on average
-  double step_wobble = 0.25;     // relative variation of the step (a hand-pushed trolley)
+  double step = 0.08;               // metres between frames on average
+  double step_wobble = 0.25;        // relative variation of the step (a hand-pushed trolley)
   double heading_wobble_deg = 2.0;  // amplitude of the heading wobble around the path tangent
-  double clearance = 0.33;       // metres kept from walls and furniture (less than half a doorway)
-  double room_spacing = 2.5;     // metres between waypoints (about one per room)
-  int max_frames = 0;            // 0 = the whole walk
+  double clearance = 0.33;          // metres kept from walls and furniture (less than half a doorway)
+  double room_spacing = 2.5;        // metres between waypoints (about one per room)
+  int max_frames = 0;               // 0 = the whole walk
   std::uint32_t seed = 3;
   std::string frame_pattern = "frames/%06d.jpg";  // PathFrame::file of each frame (empty = none)
-  SceneOptions scene;            // which layers block the trolley (walls, pillars, furniture)
+  SceneOptions scene;  // which layers block the trolley (walls, pillars, furniture)
 
   std::string check() const;
 };

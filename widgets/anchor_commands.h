@@ -51,8 +51,8 @@ class SetAnchorsCommand : public QUndoCommand {
 };
 
 // The visibility cells for `moved_path` when the path of `project` moves: recomputed from the plan when the
-// project had cells (about 15 ms on the office sample), empty when they cannot be (no occluders); nullopt when
-// the project had none, so there is nothing to keep up to date. Cells of the old path would colour the
+// project had cells (about 15 ms on the office sample), empty when they cannot be (no occluders); nullopt
+// when the project had none, so there is nothing to keep up to date. Cells of the old path would colour the
 // map and drive the visibility sampler with events at the wrong places.
 std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path);
 

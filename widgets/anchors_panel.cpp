@@ -113,7 +113,8 @@ void AnchorsPanel::refill() {
     item_at(table_, row, kFrameColumn)->setText(QString::number(a.frame));
     item_at(table_, row, kXColumn)->setText(QString::number(a.position.x(), 'f', 3));
     item_at(table_, row, kYColumn)->setText(QString::number(a.position.y(), 'f', 3));
-    item_at(table_, row, kHeadingColumn)->setText(a.heading ? QString::number(degrees(*a.heading), 'f', 1) : QString());
+    item_at(table_, row, kHeadingColumn)
+        ->setText(a.heading ? QString::number(degrees(*a.heading), 'f', 1) : QString());
     QTableWidgetItem* residual = item_at(table_, row, kResidualColumn);
     residual->setFlags(residual->flags() & ~Qt::ItemIsEditable);
     residual->setText(residuals[i] < 0 ? tr("not on path") : QString::number(residuals[i], 'f', 3));
@@ -151,17 +152,20 @@ void AnchorsPanel::on_item_changed(QTableWidgetItem* item) {
       const int frame = text.toInt(&ok);
       if (!ok) return show_problem(tr("Frame: \"%1\" is not a frame number").arg(text));
       if (!p.path.find_frame(frame)) return show_problem(tr("Frame %1 is not on the path").arg(frame));
-      if (frame != a.frame && std::any_of(anchors.begin(), anchors.end(), [&](const Anchor& o) { return o.frame == frame; }))
+      if (frame != a.frame &&
+          std::any_of(anchors.begin(), anchors.end(), [&](const Anchor& o) { return o.frame == frame; }))
         return show_problem(tr("Frame %1 has an anchor already").arg(frame));
       what = tr("Move anchor from frame %1 to %2").arg(a.frame).arg(frame);
       a.frame = frame;
-      std::sort(anchors.begin(), anchors.end(), [](const Anchor& l, const Anchor& r) { return l.frame < r.frame; });
+      std::sort(anchors.begin(), anchors.end(),
+                [](const Anchor& l, const Anchor& r) { return l.frame < r.frame; });
       break;
     }
     case kXColumn:
     case kYColumn: {
       const double value = text.toDouble(&ok);
-      if (!ok || !std::isfinite(value)) return show_problem(tr("\"%1\" is not a coordinate in metres").arg(text));
+      if (!ok || !std::isfinite(value))
+        return show_problem(tr("\"%1\" is not a coordinate in metres").arg(text));
       a.position[item->column() == kXColumn ? 0 : 1] = value;
       what = tr("Edit anchor of frame %1").arg(a.frame);
       break;
@@ -171,18 +175,21 @@ void AnchorsPanel::on_item_changed(QTableWidgetItem* item) {
         a.heading.reset();
       } else {
         const double value = text.toDouble(&ok);
-        if (!ok || !std::isfinite(value)) return show_problem(tr("\"%1\" is not a heading in degrees").arg(text));
+        if (!ok || !std::isfinite(value))
+          return show_problem(tr("\"%1\" is not a heading in degrees").arg(text));
         a.heading = wrap_angle(radians(value));
       }
       what = tr("Edit heading of the anchor of frame %1").arg(a.frame);
       break;
     }
-    default: return;
+    default:
+      return;
   }
   if (anchors == p.anchors) return;
   try {
     // Every edit corrects the path at once, as a drag on the map does.
-    document_.undo_stack()->push(new SetAnchorsCommand(document_, what, std::move(anchors), PathCorrection::kRefine));
+    document_.undo_stack()->push(
+        new SetAnchorsCommand(document_, what, std::move(anchors), PathCorrection::kRefine));
   } catch (const Error& e) {
     show_problem(QString::fromStdString(e.what()));
   }
@@ -194,7 +201,8 @@ void AnchorsPanel::delete_selected() {
   const Anchors& anchors = document_.project().anchors;
   std::vector<int> frames;
   for (int row : rows)
-    if (row >= 0 && row < static_cast<int>(anchors.size())) frames.push_back(anchors[static_cast<std::size_t>(row)].frame);
+    if (row >= 0 && row < static_cast<int>(anchors.size()))
+      frames.push_back(anchors[static_cast<std::size_t>(row)].frame);
   if (frames.empty()) return;
   const QString text = frames.size() == 1 ? tr("Delete anchor of frame %1").arg(frames.front())
                                           : tr("Delete %1 anchors").arg(frames.size());
@@ -205,7 +213,8 @@ void AnchorsPanel::delete_selected() {
 bool AnchorsPanel::eventFilter(QObject* watched, QEvent* event) {
   if (watched == table_ && event->type() == QEvent::KeyPress) {
     const int key = static_cast<QKeyEvent*>(event)->key();
-    if ((key == Qt::Key_Delete || key == Qt::Key_Backspace)) {  // while a cell is edited, keys go to its editor
+    if ((key == Qt::Key_Delete ||
+         key == Qt::Key_Backspace)) {  // while a cell is edited, keys go to its editor
       delete_selected();
       return true;
     }

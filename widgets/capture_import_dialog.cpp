@@ -61,7 +61,8 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
   layout->addWidget(buttons);
 
   connect(folder_button, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getExistingDirectory(this, tr("Folder of equirectangular frames"), source_->text());
+    const QString f =
+        QFileDialog::getExistingDirectory(this, tr("Folder of equirectangular frames"), source_->text());
     if (!f.isEmpty()) source_->setText(f);
   });
   connect(video_button, &QPushButton::clicked, this, [this] {

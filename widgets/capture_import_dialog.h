@@ -14,9 +14,9 @@ class QSpinBox;
 namespace plenopath::widgets {
 
 struct CaptureImportChoices {
-  std::string source;           // folder or video file
-  FrameSourceOptions options;   // range, stride, depth folder, folder frame rate
-  double camera_height_m = 0.0; // 0 = unknown
+  std::string source;            // folder or video file
+  FrameSourceOptions options;    // range, stride, depth folder, folder frame rate
+  double camera_height_m = 0.0;  // 0 = unknown
 };
 
 class CaptureImportDialog : public QDialog {

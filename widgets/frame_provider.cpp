@@ -14,7 +14,8 @@ namespace {
 constexpr qint64 kCacheBytes = qint64(128) << 20;
 }
 
-FrameProvider::FrameProvider(ProjectDocument& document, QObject* parent) : QObject(parent), document_(document) {
+FrameProvider::FrameProvider(ProjectDocument& document, QObject* parent)
+    : QObject(parent), document_(document) {
   connect(&document_, &ProjectDocument::changed, this, [this](unsigned flags) {
     if (flags & kCaptureChanged) reopen();
   });
@@ -88,7 +89,8 @@ void FrameProvider::start(int position) {
   watcher_.setFuture(QtConcurrent::run([source, cache, i, direction]() -> std::pair<QImage, QString> {
     try {
       if (i < 0 || i >= source->frame_count())
-        return {QImage(), QObject::tr("frame %1 is not in the capture (%2 frames)").arg(i).arg(source->frame_count())};
+        return {QImage(),
+                QObject::tr("frame %1 is not in the capture (%2 frames)").arg(i).arg(source->frame_count())};
       const cv::Mat bgr = cache->get(i);
       cache->prefetch(i, direction);  // decode what playback or scrubbing will ask for next
       cv::Mat rgba;

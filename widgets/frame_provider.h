@@ -1,8 +1,8 @@
 #pragma once
 // Frames of the document's capture for the views, decoded off the GUI thread through processing's
 // FrameCache (frame_source.h, frame_cache.h: byte-bounded LRU, prefetch around the play head in the
-// direction of travel); the last few converted images are kept here too. Requests are latest-wins: while one frame decodes, only the most
-// recent request waits, so scrubbing and playback never queue up work.
+// direction of travel); the last few converted images are kept here too. Requests are latest-wins: while one
+// frame decodes, only the most recent request waits, so scrubbing and playback never queue up work.
 #include <QFutureWatcher>
 #include <QImage>
 #include <QList>
@@ -14,7 +14,7 @@
 namespace plenopath {
 class FrameCache;
 class FrameSource;
-}
+}  // namespace plenopath
 
 namespace plenopath::widgets {
 
@@ -52,8 +52,8 @@ class FrameProvider : public QObject {
   QList<std::pair<int, QImage>> cache_;  // most recent first
   qint64 cache_bytes_ = 0;
   QFutureWatcher<std::pair<QImage, QString>> watcher_;
-  int decoding_ = -1;  // position being decoded, -1 when idle
-  int waiting_ = -1;   // latest request made while decoding
+  int decoding_ = -1;        // position being decoded, -1 when idle
+  int waiting_ = -1;         // latest request made while decoding
   unsigned generation_ = 0;  // bumps when the source changes; stale decodes are dropped
   unsigned decoding_generation_ = 0;
 };

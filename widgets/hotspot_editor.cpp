@@ -26,11 +26,11 @@ namespace plenopath::widgets {
 
 namespace {
 
-constexpr double kHandleRadius = 9.0;   // widget pixels within which a press grabs a corner handle
-constexpr double kClickSlop = 5.0;      // a press and release closer than this is a click, not a look-around
-constexpr int kEdgeSteps = 16;          // samples per edge when drawing re-projected outlines
-constexpr int kMaxMediaSide = 1024;     // preview media is scaled down to this
-constexpr int kOverlayHeight = 512;     // whole-image mode: the media is warped into a 1024 x 512 overlay
+constexpr double kHandleRadius = 9.0;  // widget pixels within which a press grabs a corner handle
+constexpr double kClickSlop = 5.0;     // a press and release closer than this is a click, not a look-around
+constexpr int kEdgeSteps = 16;         // samples per edge when drawing re-projected outlines
+constexpr int kMaxMediaSide = 1024;    // preview media is scaled down to this
+constexpr int kOverlayHeight = 512;    // whole-image mode: the media is warped into a 1024 x 512 overlay
 
 const QColor kOutline(255, 200, 40);
 const QColor kSelected(40, 220, 255);
@@ -48,7 +48,8 @@ QImage equirect_overlay(const QImage& media, const std::vector<Eigen::Vector3d>&
   cv::Mat canvas(kOverlayHeight, 2 * kOverlayHeight, CV_8UC3, cv::Scalar::all(0));
   cv::Mat mask = canvas.clone();
   warp_media_into_equirect(canvas, media_bgr, quad, pose, camera_height_m);
-  warp_media_into_equirect(mask, cv::Mat(media_bgr.size(), CV_8UC3, cv::Scalar::all(255)), quad, pose, camera_height_m);
+  warp_media_into_equirect(mask, cv::Mat(media_bgr.size(), CV_8UC3, cv::Scalar::all(255)), quad, pose,
+                           camera_height_m);
   QImage out(canvas.cols, canvas.rows, QImage::Format_ARGB32);
   out.fill(Qt::transparent);
   for (int v = 0; v < canvas.rows; ++v)
@@ -68,9 +69,12 @@ QImage to_qimage(const cv::Mat& bgr) {
     cv::resize(bgr, small, cv::Size(), s, s, cv::INTER_AREA);
   }
   cv::Mat rgb;
-  if (small.channels() == 1) cv::cvtColor(small, rgb, cv::COLOR_GRAY2RGB);
-  else if (small.channels() == 4) cv::cvtColor(small, rgb, cv::COLOR_BGRA2RGB);
-  else cv::cvtColor(small, rgb, cv::COLOR_BGR2RGB);
+  if (small.channels() == 1)
+    cv::cvtColor(small, rgb, cv::COLOR_GRAY2RGB);
+  else if (small.channels() == 4)
+    cv::cvtColor(small, rgb, cv::COLOR_BGRA2RGB);
+  else
+    cv::cvtColor(small, rgb, cv::COLOR_BGR2RGB);
   return QImage(rgb.data, rgb.cols, rgb.rows, static_cast<int>(rgb.step), QImage::Format_RGB888).copy();
 }
 
@@ -125,14 +129,18 @@ void HotspotEditor::set_mode(Mode mode) {
 void HotspotEditor::announce_mode() {
   switch (mode_) {
     case Mode::kNewMovieTexture:
-      emit status_message(tr("New movie texture: click the four corners of a TV, poster or window in the panorama "
-                             "(drag to look around, Esc cancels)"));
+      emit status_message(
+          tr("New movie texture: click the four corners of a TV, poster or window in the panorama "
+             "(drag to look around, Esc cancels)"));
       break;
     case Mode::kNewEvent:
-      emit status_message(tr("New event hotspot: click four corners for a quad, or Shift+click three or more and "
-                             "press Enter for a polygon (Esc cancels)"));
+      emit status_message(
+          tr("New event hotspot: click four corners for a quad, or Shift+click three or more and "
+             "press Enter for a polygon (Esc cancels)"));
       break;
-    case Mode::kIdle: emit status_message(QString()); break;
+    case Mode::kIdle:
+      emit status_message(QString());
+      break;
   }
 }
 
@@ -155,8 +163,10 @@ void HotspotEditor::show_hotspot(const std::string& id) {
   visibility.camera_height_m = height;
   const int position = position_to_show_hotspot(h, p.path, p.plan, document_.current_position(), visibility);
   if (position < 0) {
-    if (p.path.empty() && h.frame >= 0) document_.set_current_position(h.frame);
-    else emit status_message(tr("No frame on the path sees hotspot %1").arg(QString::fromStdString(h.title)));
+    if (p.path.empty() && h.frame >= 0)
+      document_.set_current_position(h.frame);
+    else
+      emit status_message(tr("No frame on the path sees hotspot %1").arg(QString::fromStdString(h.title)));
   } else {
     document_.set_current_position(position);
   }
@@ -203,7 +213,8 @@ void HotspotEditor::add_corner(const SphericalAngles& direction, bool keep_going
   if (mode_ == Mode::kNewMovieTexture || !keep_going)
     emit status_message(tr("Corner %1 of 4 marked (Esc cancels)").arg(pending_.size()));
   else
-    emit status_message(tr("Polygon corner %1 marked: Shift+click more, Enter finishes").arg(pending_.size()));
+    emit status_message(
+        tr("Polygon corner %1 marked: Shift+click more, Enter finishes").arg(pending_.size()));
   view_.update();
 }
 
@@ -274,7 +285,8 @@ std::optional<HotspotEditor::Shown> HotspotEditor::shown(const Hotspot& h) const
   auto add_outline = [&](const std::vector<std::optional<QPointF>>& points) {
     std::vector<QPointF> piece;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const bool jump = k > 0 && points[k] && points[k - 1] && std::abs(points[k]->x() - points[k - 1]->x()) > 0.5 * width;
+      const bool jump =
+          k > 0 && points[k] && points[k - 1] && std::abs(points[k]->x() - points[k - 1]->x()) > 0.5 * width;
       if (!points[k] || jump) {
         if (piece.size() >= 2) s.outline.push_back(piece);
         piece.clear();
@@ -404,7 +416,8 @@ bool HotspotEditor::mouse_press(QMouseEvent* event) {
   // A press inside a hotspot selects it (the topmost: the last drawn).
   const std::vector<Shown> all = shown_hotspots();
   for (auto it = all.rbegin(); it != all.rend(); ++it)
-    if (QPolygonF(QVector<QPointF>(it->corners.begin(), it->corners.end())).containsPoint(event->localPos(), Qt::OddEvenFill)) {
+    if (QPolygonF(QVector<QPointF>(it->corners.begin(), it->corners.end()))
+            .containsPoint(event->localPos(), Qt::OddEvenFill)) {
       select(it->hotspot->id);
       return false;
     }
@@ -453,13 +466,15 @@ bool HotspotEditor::key_press(QKeyEvent* event) {
       emit status_message(tr("Cancelled: no hotspot made"));
       return true;
     case Qt::Key_Delete:
-    case Qt::Key_Backspace: return mode_ == Mode::kIdle && delete_selected();
+    case Qt::Key_Backspace:
+      return mode_ == Mode::kIdle && delete_selected();
     case Qt::Key_Return:
     case Qt::Key_Enter:
       if (mode_ == Mode::kIdle) return false;
       finish_pending();
       return true;
-    default: return false;
+    default:
+      return false;
   }
 }
 
@@ -482,7 +497,8 @@ void HotspotEditor::drag_corner_to(const QPointF& widget_point) {
       return;
     }
     // Keep the marks in the authoring frame in step with the 3-D corner.
-    if (const PathFrame* authoring = p.path.find_frame(h.frame); authoring && corner < h.image_corners.size()) {
+    if (const PathFrame* authoring = p.path.find_frame(h.frame);
+        authoring && corner < h.image_corners.size()) {
       const SphericalAngles a = direction_in_frame(h.world_corners[corner], *authoring, height);
       h.image_corners[corner] = {a.azimuth, a.elevation};
     }
@@ -491,7 +507,8 @@ void HotspotEditor::drag_corner_to(const QPointF& widget_point) {
   } else {
     return;
   }
-  document_.undo_stack()->push(new EditHotspotCommand(document_, std::move(h), tr("Move hotspot corner"), drag_session_));
+  document_.undo_stack()->push(
+      new EditHotspotCommand(document_, std::move(h), tr("Move hotspot corner"), drag_session_));
 }
 
 void HotspotEditor::paint(QPainter& painter) {
@@ -522,13 +539,14 @@ void HotspotEditor::paint(QPainter& painter) {
     }
     // Movie texture preview: the media mapped onto the quad by the view's homography (exact for a planar
     // quad seen through a pinhole view).
-    if (h.kind == HotspotKind::kMovieTexture && s.corners.size() == 4 && !view_.equirect_mode() && !h.media.empty()) {
+    if (h.kind == HotspotKind::kMovieTexture && s.corners.size() == 4 && !view_.equirect_mode() &&
+        !h.media.empty()) {
       const QImage& image = media_image(h.media);
       QTransform transform;
-      // Media corners in the order of the quad's: (0, 0), (w, 0), (w, h), (0, h) (four points: QPolygonF(QRectF)
-      // would close the ring with a fifth, which quadToQuad refuses).
-      const QPolygonF media_corners({QPointF(0, 0), QPointF(image.width(), 0), QPointF(image.width(), image.height()),
-                                     QPointF(0, image.height())});
+      // Media corners in the order of the quad's: (0, 0), (w, 0), (w, h), (0, h) (four points:
+      // QPolygonF(QRectF) would close the ring with a fifth, which quadToQuad refuses).
+      const QPolygonF media_corners({QPointF(0, 0), QPointF(image.width(), 0),
+                                     QPointF(image.width(), image.height()), QPointF(0, image.height())});
       if (!image.isNull() && QTransform::quadToQuad(media_corners, polygon, transform)) {
         painter.save();
         painter.setTransform(transform, true);
@@ -545,7 +563,8 @@ void HotspotEditor::paint(QPainter& painter) {
     }
     painter.setPen(QPen(colour, selected ? 3 : 2));
     painter.setBrush(Qt::NoBrush);
-    for (const auto& piece : s.outline) painter.drawPolyline(QPolygonF(QVector<QPointF>(piece.begin(), piece.end())));
+    for (const auto& piece : s.outline)
+      painter.drawPolyline(QPolygonF(QVector<QPointF>(piece.begin(), piece.end())));
     // Author text is drawn as text (QPainter never interprets markup).
     painter.drawText(polygon.boundingRect().topLeft() + QPointF(4, -4), QString::fromStdString(h.title));
     if (selected && mode_ == Mode::kIdle) {
@@ -570,8 +589,9 @@ void HotspotEditor::paint(QPainter& painter) {
     }
   }
   if (mode_ != Mode::kIdle) {
-    const QString hint = mode_ == Mode::kNewMovieTexture ? tr("New movie texture: corner %1 of 4").arg(pending_.size() + 1)
-                                                         : tr("New event hotspot: corner %1").arg(pending_.size() + 1);
+    const QString hint = mode_ == Mode::kNewMovieTexture
+                             ? tr("New movie texture: corner %1 of 4").arg(pending_.size() + 1)
+                             : tr("New event hotspot: corner %1").arg(pending_.size() + 1);
     painter.setPen(Qt::white);
     const QRectF box(8, 8, painter.fontMetrics().horizontalAdvance(hint) + 16, 22);
     painter.fillRect(box, QColor(200, 40, 40, 170));

@@ -80,8 +80,9 @@ class HotspotEditor : public QObject {
  private:
   struct Shown {
     const Hotspot* hotspot = nullptr;
-    std::vector<QPointF> corners;         // widget pixels, one per corner
-    std::vector<std::vector<QPointF>> outline;  // polyline pieces along the edges (curved in whole-image mode)
+    std::vector<QPointF> corners;  // widget pixels, one per corner
+    std::vector<std::vector<QPointF>>
+        outline;  // polyline pieces along the edges (curved in whole-image mode)
   };
   std::vector<Shown> shown_hotspots() const;
   std::optional<Shown> shown(const Hotspot& h) const;

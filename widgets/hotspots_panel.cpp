@@ -40,8 +40,9 @@ const std::vector<std::pair<const char*, const char*>> kActions{
 
 QString target_hint(const std::string& action) {
   if (action == "swap_image")
-    return QObject::tr("image shown instead of the region, or a video of an image sequence (played once, then "
-                       "held; `plenopath encode-video` makes one from frames)");
+    return QObject::tr(
+        "image shown instead of the region, or a video of an image sequence (played once, then "
+        "held; `plenopath encode-video` makes one from frames)");
   if (action == "play_video") return QObject::tr("video file (empty: the movie texture's own video)");
   if (action == "play_sound") return QObject::tr("sound file");
   if (action == "jump") return QObject::tr("frame number, or another tour's http(s) address");
@@ -75,12 +76,13 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
       validate_timer_(new QTimer(this)) {
   setObjectName("hotspots_panel");
   ask_file = [this](const QString& what, const QString& current) {
-    const QString filter = what == "media" ? tr("Images and videos (*.png *.jpg *.jpeg *.webp *.gif *.bmp *.mp4 *.m4v "
-                                                "*.webm *.mov *.mkv *.avi);;All files (*)")
-                                           : tr("Media (*.png *.jpg *.jpeg *.webp *.gif *.mp4 *.m4v *.webm *.mov *.mp3 *.ogg "
-                                                "*.wav);;All files (*)");
-    return QFileDialog::getOpenFileName(this, what == "media" ? tr("Media for the hotspot") : tr("Action target"),
-                                        current, filter);
+    const QString filter =
+        what == "media" ? tr("Images and videos (*.png *.jpg *.jpeg *.webp *.gif *.bmp *.mp4 *.m4v "
+                             "*.webm *.mov *.mkv *.avi);;All files (*)")
+                        : tr("Media (*.png *.jpg *.jpeg *.webp *.gif *.mp4 *.m4v *.webm *.mov *.mp3 *.ogg "
+                             "*.wav);;All files (*)");
+    return QFileDialog::getOpenFileName(
+        this, what == "media" ? tr("Media for the hotspot") : tr("Action target"), current, filter);
   };
   // Author text and file names are shown as plain text, never as rich text.
   for (QLabel* label : {info_, warning_text_, summary_}) {
@@ -119,9 +121,12 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   auto* new_movie = new QPushButton(tr("New movie texture"), this);
   auto* new_event = new QPushButton(tr("New event"), this);
   new_movie->setToolTip(tr("Then click four corners in the panorama (Ctrl+Shift+M)"));
-  new_event->setToolTip(tr("Then click four corners, or Shift+click a polygon and press Enter (Ctrl+Shift+H)"));
-  connect(new_movie, &QPushButton::clicked, this, [this] { editor_.set_mode(HotspotEditor::Mode::kNewMovieTexture); });
-  connect(new_event, &QPushButton::clicked, this, [this] { editor_.set_mode(HotspotEditor::Mode::kNewEvent); });
+  new_event->setToolTip(
+      tr("Then click four corners, or Shift+click a polygon and press Enter (Ctrl+Shift+H)"));
+  connect(new_movie, &QPushButton::clicked, this,
+          [this] { editor_.set_mode(HotspotEditor::Mode::kNewMovieTexture); });
+  connect(new_event, &QPushButton::clicked, this,
+          [this] { editor_.set_mode(HotspotEditor::Mode::kNewEvent); });
   auto* new_row = new QHBoxLayout;
   new_row->addWidget(new_movie);
   new_row->addWidget(new_event);
@@ -204,7 +209,8 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
     edit_selected("distance", [&](Hotspot& h) { h.trigger_distance_m = value; });
   });
   connect(action_, QOverload<int>::of(&QComboBox::activated), this, [this](int index) {
-    edit_selected("action", [&](Hotspot& h) { h.action = action_->itemData(index).toString().toStdString(); });
+    edit_selected("action",
+                  [&](Hotspot& h) { h.action = action_->itemData(index).toString().toStdString(); });
   });
   connect(target_, &QLineEdit::textEdited, this, [this](const QString& text) {
     edit_selected("target", [&](Hotspot& h) { h.action_target = text.toStdString(); });
@@ -213,7 +219,8 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
     const QString file = ask_file("target", target_->text());
     if (file.isEmpty()) return;
     last_field_.clear();
-    edit_selected("target", [&](Hotspot& h) { h.action_target = QFileInfo(file).absoluteFilePath().toStdString(); });
+    edit_selected("target",
+                  [&](Hotspot& h) { h.action_target = QFileInfo(file).absoluteFilePath().toStdString(); });
   });
 
   rebuild_list();
@@ -251,28 +258,33 @@ void HotspotsPanel::rebuild_list() {
     const Hotspot& h = hotspots[i];
     QListWidgetItem* item = list_->item(static_cast<int>(i));
     const QString kind = h.kind == HotspotKind::kMovieTexture ? tr("movie texture") : tr("event");
-    item->setText(tr("%1 — %2, frame %3").arg(QString::fromStdString(h.title.empty() ? h.id : h.title), kind).arg(h.frame));
+    item->setText(tr("%1 — %2, frame %3")
+                      .arg(QString::fromStdString(h.title.empty() ? h.id : h.title), kind)
+                      .arg(h.frame));
     QStringList problems;
     for (const HotspotWarning& w : warnings_)
       if (w.hotspot_id == h.id) problems << QString::fromStdString(w.message);
     item->setIcon(problems.isEmpty() ? QIcon() : style()->standardIcon(QStyle::SP_MessageBoxWarning));
     // Escaped inside rich text, so markup in a title shows as typed.
-    item->setToolTip(problems.isEmpty() ? QString() : "<qt>" + problems.join("\n").toHtmlEscaped().replace("\n", "<br>") + "</qt>");
+    item->setToolTip(problems.isEmpty()
+                         ? QString()
+                         : "<qt>" + problems.join("\n").toHtmlEscaped().replace("\n", "<br>") + "</qt>");
     if (h.id == editor_.selected()) selected_row = static_cast<int>(i);
   }
   list_->setCurrentRow(selected_row);
-  summary_->setText(hotspots.empty() ? tr("No hotspots yet: Hotspots ▸ New movie texture (Ctrl+Shift+M) or New "
-                                         "event hotspot (Ctrl+Shift+H), then click corners in the panorama.")
-                                     : tr("%n hotspot(s), ", "", static_cast<int>(hotspots.size())) +
-                                           tr("%n warning(s)", "", static_cast<int>(warnings_.size())));
+  summary_->setText(hotspots.empty()
+                        ? tr("No hotspots yet: Hotspots ▸ New movie texture (Ctrl+Shift+M) or New "
+                             "event hotspot (Ctrl+Shift+H), then click corners in the panorama.")
+                        : tr("%n hotspot(s), ", "", static_cast<int>(hotspots.size())) +
+                              tr("%n warning(s)", "", static_cast<int>(warnings_.size())));
   updating_ = false;
 }
 
 void HotspotsPanel::show_selected() {
   updating_ = true;
   const Hotspot* h = selected_hotspot();
-  for (QWidget* w : std::initializer_list<QWidget*>{title_, kind_, media_, choose_media_, trigger_, distance_, action_,
-                                                    target_, choose_target_, goto_, delete_})
+  for (QWidget* w : std::initializer_list<QWidget*>{title_, kind_, media_, choose_media_, trigger_, distance_,
+                                                    action_, target_, choose_target_, goto_, delete_})
     w->setEnabled(h != nullptr);
   auto set_text = [](QLineEdit* edit, const QString& text) {
     if (edit->text() != text) edit->setText(text);  // keeps the cursor while typing
@@ -305,7 +317,9 @@ void HotspotsPanel::show_selected() {
                      ? tr("%1 corners in 3-D, marked in frame %2: shown in every frame that sees it.")
                            .arg(h->world_corners.size())
                            .arg(h->frame)
-                     : tr("%1 corners in frame %2 only (not placed in 3-D).").arg(h->image_corners.size()).arg(h->frame));
+                     : tr("%1 corners in frame %2 only (not placed in 3-D).")
+                           .arg(h->image_corners.size())
+                           .arg(h->frame));
   QStringList problems;
   for (const HotspotWarning& w : warnings_)
     if (w.hotspot_id == h->id) problems << "⚠ " + QString::fromStdString(w.message);

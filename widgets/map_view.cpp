@@ -1,20 +1,13 @@
 #include "widgets/map_view.h"
 
-#include <QKeyEvent>
-#include <QMouseEvent>
-#include <QTimer>
-#include <QUndoStack>
-#include <algorithm>
-#include <cmath>
-#include <limits>
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkInteractorStyleImage.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
-#include <vtkCellData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -25,6 +18,14 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QTimer>
+#include <QUndoStack>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
@@ -40,8 +41,7 @@ namespace {
 class PanZoomStyle : public vtkInteractorStyleImage {
  public:
   static PanZoomStyle* New();
-  vtkTypeMacro(PanZoomStyle, vtkInteractorStyleImage)
-  void OnLeftButtonDown() override {
+  vtkTypeMacro(PanZoomStyle, vtkInteractorStyleImage) void OnLeftButtonDown() override {
     FindPokedRenderer(Interactor->GetEventPosition()[0], Interactor->GetEventPosition()[1]);
     if (CurrentRenderer) StartPan();
   }
@@ -73,23 +73,42 @@ const std::array<unsigned char, 3> kBackground{246, 245, 240};
 // AutoCAD colour index to RGB for the common indices; others get a hue from the index.
 std::array<unsigned char, 3> aci_colour(int aci) {
   switch (aci) {
-    case 1: return {200, 40, 40};
-    case 2: return {190, 170, 20};
-    case 3: return {40, 150, 40};
-    case 4: return {20, 160, 170};
-    case 5: return {40, 70, 200};
-    case 6: return {170, 40, 170};
-    case 8: return {110, 110, 110};
-    case 9: return {160, 160, 160};
+    case 1:
+      return {200, 40, 40};
+    case 2:
+      return {190, 170, 20};
+    case 3:
+      return {40, 150, 40};
+    case 4:
+      return {20, 160, 170};
+    case 5:
+      return {40, 70, 200};
+    case 6:
+      return {170, 40, 170};
+    case 8:
+      return {110, 110, 110};
+    case 9:
+      return {160, 160, 160};
     case 7:
     case 0:
-    case 256: return {60, 60, 60};
+    case 256:
+      return {60, 60, 60};
     default: {
       const double hue = std::fmod(aci * 0.618034, 1.0) * 6.0;
       const double x = 1.0 - std::fabs(std::fmod(hue, 2.0) - 1.0);
       double r = 0, g = 0, b = 0;
-      if (hue < 1) r = 1, g = x; else if (hue < 2) r = x, g = 1; else if (hue < 3) g = 1, b = x;
-      else if (hue < 4) g = x, b = 1; else if (hue < 5) r = x, b = 1; else r = 1, b = x;
+      if (hue < 1)
+        r = 1, g = x;
+      else if (hue < 2)
+        r = x, g = 1;
+      else if (hue < 3)
+        g = 1, b = x;
+      else if (hue < 4)
+        g = x, b = 1;
+      else if (hue < 5)
+        r = x, b = 1;
+      else
+        r = 1, b = x;
       return {static_cast<unsigned char>(40 + 150 * r), static_cast<unsigned char>(40 + 150 * g),
               static_cast<unsigned char>(40 + 150 * b)};
     }
@@ -190,9 +209,10 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   anchor_actor_->GetProperty()->SetPointSize(13.0f);  // squares: distinct from the round keyframes
   anchor_core_actor_ = make_actor(white, 1.0);
   anchor_core_actor_->GetProperty()->SetPointSize(5.0f);
-  for (vtkActor* a : {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
-                      critical_actor_.Get(), ghost_path_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(),
-                      residual_actor_.Get(), current_actor_.Get(), anchor_actor_.Get(), anchor_core_actor_.Get()})
+  for (vtkActor* a :
+       {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
+        critical_actor_.Get(), ghost_path_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(),
+        residual_actor_.Get(), current_actor_.Get(), anchor_actor_.Get(), anchor_core_actor_.Get()})
     renderer_->AddActor(a);
 
   hotspot_actor_ = make_hotspot_marker_actor();  // hotspots at their 3-D position
@@ -248,11 +268,13 @@ void MapView::on_document_changed(unsigned flags) {
   if (flags & (kPlanChanged | kVisibilityChanged)) rebuild_plan();
   if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
   if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
-  if (flags & (kPathChanged | kAnchorsChanged)) rebuild_anchors(document_.project().path, document_.project().anchors);
-  hint_->SetInput(document_.project().path.empty()
-                      ? ""
-                      : "Ctrl+drag a frame: anchor it where it really was  ·  + Shift: snap to a plan corner  ·  "
-                        "drag an anchor to move it");
+  if (flags & (kPathChanged | kAnchorsChanged))
+    rebuild_anchors(document_.project().path, document_.project().anchors);
+  hint_->SetInput(
+      document_.project().path.empty()
+          ? ""
+          : "Ctrl+drag a frame: anchor it where it really was  ·  + Shift: snap to a plan corner  ·  "
+            "drag an anchor to move it");
   if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
   rebuild_current();
   if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
@@ -422,7 +444,8 @@ void MapView::rebuild_current() {
           const auto& b = polygon[(k + 1) % polygon.size()];
           area += a.x() * b.y() - a.y() * b.x();
         }
-        caption = " · envelope " + std::to_string(static_cast<int>(std::round(0.5 * std::fabs(area)))) + " m²";
+        caption =
+            " · envelope " + std::to_string(static_cast<int>(std::round(0.5 * std::fabs(area)))) + " m²";
       }
     }
     char head[128];
@@ -482,7 +505,8 @@ QPoint MapView::widget_pixel_of(const Eigen::Vector2d& plan_point) {
   renderer_->SetWorldPoint(plan_point.x(), plan_point.y(), 0.0, 1.0);
   renderer_->WorldToDisplay();
   const double* d = renderer_->GetDisplayPoint();
-  return QPoint(static_cast<int>(std::lround(d[0] / dpr)), static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr)));
+  return QPoint(static_cast<int>(std::lround(d[0] / dpr)),
+                static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr)));
 }
 
 bool MapView::event(QEvent* e) {
@@ -567,8 +591,9 @@ Eigen::Vector2d MapView::anchor_target(const QPoint& pixel, bool snap, bool* sna
 }
 
 QString MapView::anchor_hint() {
-  return tr("Ctrl + drag a frame of the path to where it really was (an anchor); hold Shift too to snap to a "
-            "plan corner. Drag an anchor marker to move it; Esc cancels a drag.");
+  return tr(
+      "Ctrl + drag a frame of the path to where it really was (an anchor); hold Shift too to snap to a "
+      "plan corner. Drag an anchor marker to move it; Esc cancels a drag.");
 }
 
 // Returns true when the event belonged to an anchor drag (it then does not reach VTK's pan and zoom).
@@ -664,17 +689,19 @@ void MapView::end_anchor_drag(bool apply) {
                                       [&](const Anchor& a) { return a.frame == drag.frame; });
     try {
       auto* command = new SetAnchorsCommand(
-          document_, existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
+          document_,
+          existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
           drag.anchors, PathCorrection::kRefine);
       const bool refined = command->applied() == PathCorrection::kRefine;
       document_.undo_stack()->push(command);
-      emit message(tr("Frame %1 anchored at (%2, %3) m; %4")
-                       .arg(drag.frame)
-                       .arg(drag.target.x(), 0, 'f', 2)
-                       .arg(drag.target.y(), 0, 'f', 2)
-                       .arg(refined ? tr("path refined with %n anchor(s)", "", static_cast<int>(drag.anchors.size()))
-                                    : tr("path warped (long path: Process > Refine path with anchors for the full "
-                                         "correction)")));
+      emit message(
+          tr("Frame %1 anchored at (%2, %3) m; %4")
+              .arg(drag.frame)
+              .arg(drag.target.x(), 0, 'f', 2)
+              .arg(drag.target.y(), 0, 'f', 2)
+              .arg(refined ? tr("path refined with %n anchor(s)", "", static_cast<int>(drag.anchors.size()))
+                           : tr("path warped (long path: Process > Refine path with anchors for the full "
+                                "correction)")));
       return;  // the document's change redraws everything
     } catch (const Error& e) {
       emit message(QString::fromStdString(e.what()));

@@ -10,13 +10,14 @@
 // refines the path with all anchors (widgets/anchor_commands.h). Anchors are magenta squares, each with a
 // thin line to where its frame is on the path (the residual).
 // Renders are requested and coalesced (one per event-loop turn), never forced by the model.
-#include <Eigen/Core>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <Eigen/Core>
 #include <array>
 #include <functional>
 #include <vector>
-#include <vtkNew.h>
-#include <vtkSmartPointer.h>
 
 #include "model/anchors.h"
 #include "model/camera_path.h"
@@ -91,15 +92,15 @@ class MapView : public QVTKOpenGLNativeWidget {
   // An anchor drag in progress.
   struct AnchorDrag {
     bool active = false;
-    int frame = -1;           // capture index of the dragged frame
+    int frame = -1;  // capture index of the dragged frame
     QPoint press_pixel;
     bool moved = false;
     Eigen::Vector2d target = Eigen::Vector2d::Zero();
     bool snapped = false;
-    bool valid = false;       // the preview could be computed
-    Anchors anchors;          // the document's anchors with the dragged one moved
-    CameraPath preview;       // the path bent by them
-    bool ghost_drawn = false; // the path before the drag is drawn (once per drag)
+    bool valid = false;        // the preview could be computed
+    Anchors anchors;           // the document's anchors with the dragged one moved
+    CameraPath preview;        // the path bent by them
+    bool ghost_drawn = false;  // the path before the drag is drawn (once per drag)
   };
 
   ProjectDocument& document_;

@@ -1,5 +1,6 @@
 #include "widgets/panorama_view.h"
 
+#include <Eigen/Geometry>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLBuffer>
@@ -9,7 +10,6 @@
 #include <QPainter>
 #include <QWheelEvent>
 #include <algorithm>
-#include <Eigen/Geometry>
 #include <cmath>
 
 #include "model/camera_path.h"
@@ -22,7 +22,6 @@
 namespace plenopath::widgets {
 
 namespace {
-
 
 // Perspective mode: the ray through a screen pixel, in the camera frame (+x forward, +y left, +z up), is
 // forward + s*right + t*up; its azimuth a = atan2(-y, x) (grows to the right) and elevation e map to the
@@ -62,7 +61,10 @@ constexpr double kMaxFov = 2.1;   // 120 degrees
 }  // namespace
 
 PanoramaView::PanoramaView(ProjectDocument& document, FrameProvider& frames, QWidget* parent)
-    : QOpenGLWidget(parent), document_(document), frames_(frames), hotspots_(new HotspotEditor(document, *this)) {
+    : QOpenGLWidget(parent),
+      document_(document),
+      frames_(frames),
+      hotspots_(new HotspotEditor(document, *this)) {
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(240, 160);
   connect(&document_, &ProjectDocument::current_position_changed, this, [this] { show_current(); });
@@ -107,7 +109,7 @@ void PanoramaView::release_gl() {
 void PanoramaView::show_current() {
   if (document_.frame_count() == 0) {
     message_ = document_.project().capture.empty() ? tr("No capture: import one with File ▸ Import capture")
-                                                  : QString();
+                                                   : QString();
     update();
     return;
   }
@@ -239,7 +241,8 @@ void PanoramaView::draw_overlay() {
   const QRectF bar(0, height() - 22, width(), 22);
   painter.fillRect(bar, QColor(0, 0, 0, 110));
   painter.drawText(bar.adjusted(8, 0, -8, 0), Qt::AlignVCenter | Qt::AlignLeft, caption);
-  if (!message_.isEmpty()) painter.drawText(rect().adjusted(12, 12, -12, -30), Qt::AlignCenter | Qt::TextWordWrap, message_);
+  if (!message_.isEmpty())
+    painter.drawText(rect().adjusted(12, 12, -12, -30), Qt::AlignCenter | Qt::TextWordWrap, message_);
 }
 
 QRectF PanoramaView::image_box() const {
@@ -321,13 +324,24 @@ void PanoramaView::keyPressEvent(QKeyEvent* event) {
   if (hotspots_->key_press(event)) return;
   switch (event->key()) {
     case Qt::Key_Right:
-    case Qt::Key_PageDown: document_.step(event->modifiers() & Qt::ShiftModifier ? 10 : 1); break;
+    case Qt::Key_PageDown:
+      document_.step(event->modifiers() & Qt::ShiftModifier ? 10 : 1);
+      break;
     case Qt::Key_Left:
-    case Qt::Key_PageUp: document_.step(event->modifiers() & Qt::ShiftModifier ? -10 : -1); break;
-    case Qt::Key_Home: document_.set_current_position(0); break;
-    case Qt::Key_End: document_.set_current_position(document_.frame_count() - 1); break;
-    case Qt::Key_E: set_equirect_mode(!equirect_mode_); break;
-    default: QOpenGLWidget::keyPressEvent(event);
+    case Qt::Key_PageUp:
+      document_.step(event->modifiers() & Qt::ShiftModifier ? -10 : -1);
+      break;
+    case Qt::Key_Home:
+      document_.set_current_position(0);
+      break;
+    case Qt::Key_End:
+      document_.set_current_position(document_.frame_count() - 1);
+      break;
+    case Qt::Key_E:
+      set_equirect_mode(!equirect_mode_);
+      break;
+    default:
+      QOpenGLWidget::keyPressEvent(event);
   }
 }
 

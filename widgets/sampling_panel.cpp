@@ -83,8 +83,9 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
   method_->addItem(tr("Visibility: least expected loss"), "visibility");
   method_->addItem(tr("Visibility: cells, l^k / v (seed)"), "visibility:cells");
   method_->addItem(tr("Depth: volume changes"), "depth");
-  method_->setToolTip(tr("How keyframes are chosen along the path. Visibility needs the visibility cells "
-                         "(Process > Compute visibility); depth needs the capture's depth maps."));
+  method_->setToolTip(
+      tr("How keyframes are chosen along the path. Visibility needs the visibility cells "
+         "(Process > Compute visibility); depth needs the capture's depth maps."));
   budget_->setRange(0, kSliderSteps);
   budget_->setToolTip(tr("Budget: frames per keyframe (reduction ratio)"));
   exponent_->setRange(0, 50);  // 0.0 .. 5.0
@@ -120,7 +121,8 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
     connect(s, &QSlider::sliderReleased, this, [this] { drag_session_ = 0; });
     connect(s, &QSlider::valueChanged, this, [this, s] { on_control_changed(s); });
   }
-  connect(method_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] { on_control_changed(nullptr); });
+  connect(method_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this] { on_control_changed(nullptr); });
   connect(&document_, &ProjectDocument::changed, this, [this](unsigned flags) {
     if (flags & (kKeyframesChanged | kPathChanged | kVisibilityChanged | kPlanChanged | kCaptureChanged)) {
       if (flags & (kVisibilityChanged | kCaptureChanged)) message_.clear();
@@ -299,8 +301,9 @@ void SamplingPanel::launch(Job job_in) {
       error = tr("unexpected error");
     }
     // Back on the GUI thread (dropped if the panel is gone: the destructor joins this thread first).
-    QMetaObject::invokeMethod(this, [this, job, ok, cancelled, error] { on_done(job, ok, cancelled, error); },
-                              Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        this, [this, job, ok, cancelled, error] { on_done(job, ok, cancelled, error); },
+        Qt::QueuedConnection);
   });
 }
 
@@ -333,7 +336,8 @@ void SamplingPanel::on_done(std::shared_ptr<Job> job, bool ok, bool cancelled, c
     }
     w->measured = job->outcome;
     if (!(job->outcome.keyframes == p.keyframes))
-      document_.undo_stack()->push(new SetKeyframesCommand(document_, job->outcome.keyframes, job->merge_session));
+      document_.undo_stack()->push(
+          new SetKeyframesCommand(document_, job->outcome.keyframes, job->merge_session));
   } else {
     w->measured = job->outcome;
     request_loss();  // the keyframes moved on meanwhile
@@ -359,7 +363,8 @@ void SamplingPanel::update_statistics() {
               .arg(s.max_gap_m, 0, 'f', 2);
   const Worker& w = *worker_;
   if (w.measured && w.measured->keyframes == p.keyframes && w.measured->loss.has_geometric)
-    text += tr("<br>geometric loss mean %1, p95 %2").arg(w.measured->loss.geometric.mean, 0, 'f', 3)
+    text += tr("<br>geometric loss mean %1, p95 %2")
+                .arg(w.measured->loss.geometric.mean, 0, 'f', 3)
                 .arg(w.measured->loss.geometric.p95, 0, 'f', 3);
   text += tr("<br>%1 visibility cells").arg(p.visibility.cells.size());
   if (w.running) {

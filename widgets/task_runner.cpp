@@ -66,20 +66,21 @@ bool TaskRunner::start(const QString& title, TaskFunction task) {
   std::shared_ptr<Run> run = run_;
   Project snapshot = document_.snapshot();
   connect(&run_->watcher, &QFutureWatcher<void>::finished, this, &TaskRunner::on_worker_done);
-  run_->watcher.setFuture(QtConcurrent::run([run, task = std::move(task), snapshot = std::move(snapshot)]() mutable {
-    // Top-level catch: nothing a task throws may escape the worker.
-    try {
-      run->result = task(std::move(snapshot), run->progress);
-      run->ok = !run->progress.cancelled();
-      run->cancelled = run->progress.cancelled();
-    } catch (const TaskCancelled&) {
-      run->cancelled = true;
-    } catch (const std::exception& e) {
-      run->error = QString::fromStdString(e.what());
-    } catch (...) {
-      run->error = QObject::tr("unknown error");
-    }
-  }));
+  run_->watcher.setFuture(
+      QtConcurrent::run([run, task = std::move(task), snapshot = std::move(snapshot)]() mutable {
+        // Top-level catch: nothing a task throws may escape the worker.
+        try {
+          run->result = task(std::move(snapshot), run->progress);
+          run->ok = !run->progress.cancelled();
+          run->cancelled = run->progress.cancelled();
+        } catch (const TaskCancelled&) {
+          run->cancelled = true;
+        } catch (const std::exception& e) {
+          run->error = QString::fromStdString(e.what());
+        } catch (...) {
+          run->error = QObject::tr("unknown error");
+        }
+      }));
   poll_timer_->start();
   emit started(title);
   return true;

@@ -42,8 +42,8 @@ class TaskProgress {
 struct TaskCancelled {};
 
 struct TaskResult {
-  Project project;         // the snapshot, changed
-  unsigned changed = 0;    // ChangeFlag bits of the parts to apply
+  Project project;       // the snapshot, changed
+  unsigned changed = 0;  // ChangeFlag bits of the parts to apply
 };
 using TaskFunction = std::function<TaskResult(Project snapshot, TaskProgress& progress)>;
 

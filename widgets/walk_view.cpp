@@ -20,7 +20,6 @@ namespace {
 
 constexpr int kTextureCache = 8;
 
-
 // ray maps (ndc.x, ndc.y, 1) to a world direction (plan frame, z up). A keyframe with heading h sees world
 // angle phi at azimuth h - phi (rig/spherical.h), i.e. at texture u = (h - phi + pi) / 2pi.
 const char* kFragmentShader = R"(#version 150
@@ -198,13 +197,15 @@ void WalkView::paintGL() {
   QPainter painter(this);
   painter.setRenderHint(QPainter::Antialiasing);
   const WalkKeyframe& k = navigator_.keyframes()[current];
-  const QString status = tr("Keyframe %1 of %2 · frame %3 · %4 m of %5 m   (W/S walk · drag to look · Esc closes)")
-                             .arg(current + 1)
-                             .arg(navigator_.keyframes().size())
-                             .arg(k.frame)
-                             .arg(navigator_.s(), 0, 'f', 1)
-                             .arg(navigator_.path_length(), 0, 'f', 1);
-  painter.fillRect(QRect(10, 10, painter.fontMetrics().horizontalAdvance(status) + 16, 26), QColor(0, 0, 0, 150));
+  const QString status =
+      tr("Keyframe %1 of %2 · frame %3 · %4 m of %5 m   (W/S walk · drag to look · Esc closes)")
+          .arg(current + 1)
+          .arg(navigator_.keyframes().size())
+          .arg(k.frame)
+          .arg(navigator_.s(), 0, 'f', 1)
+          .arg(navigator_.path_length(), 0, 'f', 1);
+  painter.fillRect(QRect(10, 10, painter.fontMetrics().horizontalAdvance(status) + 16, 26),
+                   QColor(0, 0, 0, 150));
   painter.setPen(Qt::white);
   painter.drawText(QRect(18, 10, width(), 26), Qt::AlignVCenter, status);
   if (!have_current) painter.drawText(rect(), Qt::AlignCenter, tr("Loading keyframe %1…").arg(k.frame));
@@ -301,17 +302,44 @@ void WalkView::tick() {
 void WalkView::keyPressEvent(QKeyEvent* event) {
   const double step = 5.0 * M_PI / 180.0;
   switch (event->key()) {
-    case Qt::Key_W: case Qt::Key_Up: navigator_.step(+1); break;
-    case Qt::Key_S: case Qt::Key_Down: navigator_.step(-1); break;
-    case Qt::Key_A: case Qt::Key_Left: navigator_.set_yaw(navigator_.yaw() + step); break;
-    case Qt::Key_D: case Qt::Key_Right: navigator_.set_yaw(navigator_.yaw() - step); break;
-    case Qt::Key_PageUp: pitch_ = std::min(1.45, pitch_ + step); break;
-    case Qt::Key_PageDown: pitch_ = std::max(-1.45, pitch_ - step); break;
-    case Qt::Key_Plus: case Qt::Key_Equal: fov_ = std::max(0.35, fov_ / 1.1); break;
-    case Qt::Key_Minus: fov_ = std::min(2.0, fov_ * 1.1); break;
-    case Qt::Key_F11: isFullScreen() ? showNormal() : showFullScreen(); break;
-    case Qt::Key_Escape: close(); return;
-    default: QOpenGLWidget::keyPressEvent(event); return;
+    case Qt::Key_W:
+    case Qt::Key_Up:
+      navigator_.step(+1);
+      break;
+    case Qt::Key_S:
+    case Qt::Key_Down:
+      navigator_.step(-1);
+      break;
+    case Qt::Key_A:
+    case Qt::Key_Left:
+      navigator_.set_yaw(navigator_.yaw() + step);
+      break;
+    case Qt::Key_D:
+    case Qt::Key_Right:
+      navigator_.set_yaw(navigator_.yaw() - step);
+      break;
+    case Qt::Key_PageUp:
+      pitch_ = std::min(1.45, pitch_ + step);
+      break;
+    case Qt::Key_PageDown:
+      pitch_ = std::max(-1.45, pitch_ - step);
+      break;
+    case Qt::Key_Plus:
+    case Qt::Key_Equal:
+      fov_ = std::max(0.35, fov_ / 1.1);
+      break;
+    case Qt::Key_Minus:
+      fov_ = std::min(2.0, fov_ * 1.1);
+      break;
+    case Qt::Key_F11:
+      isFullScreen() ? showNormal() : showFullScreen();
+      break;
+    case Qt::Key_Escape:
+      close();
+      return;
+    default:
+      QOpenGLWidget::keyPressEvent(event);
+      return;
   }
   clock_.restart();
   timer_.start();

@@ -57,7 +57,8 @@ nlohmann::json summarize(const Options& o) {
                             {"heads", source->head_count()},
                             {"skipped", skipped}};
   if (!o.depth.empty())
-    summary["depth"] = {{"folder", o.depth}, {"matched", source->depth_match_count()},
+    summary["depth"] = {{"folder", o.depth},
+                        {"matched", source->depth_match_count()},
                         {"unmatched", n - source->depth_match_count()}};
   if (!o.gpx.empty()) {
     const GpxTrack track = read_gpx(o.gpx);
@@ -81,38 +82,44 @@ nlohmann::json summarize(const Options& o) {
 
 void print_text(const nlohmann::json& s) {
   std::cout << std::fixed << std::setprecision(3);
-  std::cout << "Capture   " << s["source"].get<std::string>() << " (" << s["kind"].get<std::string>() << ")\n";
+  std::cout << "Capture   " << s["source"].get<std::string>() << " (" << s["kind"].get<std::string>()
+            << ")\n";
   std::cout << "Frames    " << s["frames"] << " of " << s["size"][0] << "x" << s["size"][1] << " at "
             << s["frame_rate"].get<double>() << " fps, " << s["duration_s"].get<double>() << " s ("
             << s["first_name"].get<std::string>() << " .. " << s["last_name"].get<std::string>() << ")\n";
   if (s["heads"].get<int>() > 0) std::cout << "Heads     " << s["heads"] << " (stitched on the fly)\n";
   std::cout << "Skipped   " << s["skipped"].size() << "\n";
   for (const auto& k : s["skipped"])
-    std::cout << "          " << k["name"].get<std::string>() << ": " << k["reason"].get<std::string>() << "\n";
+    std::cout << "          " << k["name"].get<std::string>() << ": " << k["reason"].get<std::string>()
+              << "\n";
   if (s.contains("depth"))
     std::cout << "Depth     " << s["depth"]["matched"] << " frames matched, " << s["depth"]["unmatched"]
               << " without\n";
   if (s.contains("gps"))
-    std::cout << "GPS       " << s["gps"]["samples"] << " samples over " << s["gps"]["duration_s"].get<double>()
-              << " s; " << s["gps"]["frames_matched"] << " frames matched, " << s["gps"]["frames_unmatched"]
-              << " not\n";
+    std::cout << "GPS       " << s["gps"]["samples"] << " samples over "
+              << s["gps"]["duration_s"].get<double>() << " s; " << s["gps"]["frames_matched"]
+              << " frames matched, " << s["gps"]["frames_unmatched"] << " not\n";
 }
 
 }  // namespace
 
 Command add_capture_info_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("capture-info", "Inspect a capture (image folder or 360 video) before import");
+  CLI::App* sub =
+      parent.add_subcommand("capture-info", "Inspect a capture (image folder or 360 video) before import");
   sub->add_option("source", o->source, "Folder of equirectangular frames, or a video file")->required();
   sub->add_option("--first", o->first, "First frame kept (video frame number or position in the folder)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--last", o->last, "Last frame kept, inclusive (-1 = to the end)");
   sub->add_option("--stride", o->stride, "Keep every S-th frame")->check(CLI::PositiveNumber);
-  sub->add_option("--rate", o->rate, "Frames per second of an image folder (default 30)")->check(CLI::PositiveNumber);
+  sub->add_option("--rate", o->rate, "Frames per second of an image folder (default 30)")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--depth", o->depth, "Folder of depth maps matched to frames by name");
   sub->add_option("--gpx", o->gpx, "GPS track (GPX) matched to frames by time");
-  sub->add_option("--gps-offset", o->gps_offset_s, "Seconds on the GPS clock at the capture's first frame time");
-  sub->add_option("--stitch-width", o->stitch_width, "Multi-head captures (a folder with rig.json): panorama width")
+  sub->add_option("--gps-offset", o->gps_offset_s,
+                  "Seconds on the GPS clock at the capture's first frame time");
+  sub->add_option("--stitch-width", o->stitch_width,
+                  "Multi-head captures (a folder with rig.json): panorama width")
       ->check(CLI::Range(8, 32768));
   sub->add_flag("--any-aspect", o->any_aspect, "Accept frames that are not 2:1");
   sub->add_flag("--verify", o->verify, "Decode every image while scanning (slow, finds all corrupt frames)");

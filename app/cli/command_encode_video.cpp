@@ -20,14 +20,17 @@ Command add_encode_video_command(CLI::App& parent) {
     bool any_aspect = false, json = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("encode-video", "Write a capture's frames (image folder or video) as a video");
-  sub->add_option("source", o->source, "Folder of frames (natural sort order), multi-head folder, or video")->required();
+  CLI::App* sub =
+      parent.add_subcommand("encode-video", "Write a capture's frames (image folder or video) as a video");
+  sub->add_option("source", o->source, "Folder of frames (natural sort order), multi-head folder, or video")
+      ->required();
   sub->add_option("--out", o->out, "Video file to write (.mp4, .mkv, .mov, .avi)")->required();
   sub->add_option("--codec", o->encode.codec, "h264 (default), hevc, mp4v or mjpg")
       ->check(CLI::IsMember({"h264", "hevc", "mp4v", "mjpg"}));
   sub->add_option("--fps", o->encode.frame_rate, "Frames per second of the video (default: the source's)")
       ->check(CLI::Range(0.0, 1000.0));
-  sub->add_option("--rate", o->rate, "Frames per second of an image folder (default 30)")->check(CLI::PositiveNumber);
+  sub->add_option("--rate", o->rate, "Frames per second of an image folder (default 30)")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--first", o->first, "First frame kept")->check(CLI::NonNegativeNumber);
   sub->add_option("--last", o->last, "Last frame kept, inclusive (-1 = to the end)");
   sub->add_option("--stride", o->stride, "Keep every S-th frame")->check(CLI::PositiveNumber);
@@ -52,7 +55,9 @@ Command add_encode_video_command(CLI::App& parent) {
               std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             else
               std::cout << "Wrote " << r.frames_written << " frames to " << o->out << " (" << r.fourcc << ")"
-                        << (r.frames_failed ? ", " + std::to_string(r.frames_failed) + " unreadable frames left out" : "")
+                        << (r.frames_failed
+                                ? ", " + std::to_string(r.frames_failed) + " unreadable frames left out"
+                                : "")
                         << "\n";
             return kExitOk;
           }};

@@ -25,20 +25,18 @@ Command add_eval_path_command(CLI::App& parent) {
             const CameraPath estimate = read_path_file(options->estimate);
             const CameraPath truth = read_path_file(options->truth);
             const PathErrors e = evaluate_path(estimate, truth);
-            const nlohmann::json j = {{"frames_matched", e.frames_matched},
-                                      {"rot_rms_deg", e.rot_rms_deg},
-                                      {"rot_max_deg", e.rot_max_deg},
-                                      {"ate_rms_m", e.ate_rms_m},
-                                      {"ate_max_m", e.ate_max_m},
-                                      {"ate_pct", e.ate_pct},
-                                      {"truth_length_m", e.truth_length_m},
-                                      {"scale_error_pct", e.scale_error_pct}};
+            const nlohmann::json j = {
+                {"frames_matched", e.frames_matched}, {"rot_rms_deg", e.rot_rms_deg},
+                {"rot_max_deg", e.rot_max_deg},       {"ate_rms_m", e.ate_rms_m},
+                {"ate_max_m", e.ate_max_m},           {"ate_pct", e.ate_pct},
+                {"truth_length_m", e.truth_length_m}, {"scale_error_pct", e.scale_error_pct}};
             if (options->json) {
               std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
-              std::cout << std::fixed << std::setprecision(4) << e.frames_matched << " frames matched; heading RMS "
-                        << e.rot_rms_deg << " deg; ATE " << e.ate_rms_m << " m RMS (" << e.ate_pct
-                        << " % of " << e.truth_length_m << " m); scale error " << e.scale_error_pct << " %\n";
+              std::cout << std::fixed << std::setprecision(4) << e.frames_matched
+                        << " frames matched; heading RMS " << e.rot_rms_deg << " deg; ATE " << e.ate_rms_m
+                        << " m RMS (" << e.ate_pct << " % of " << e.truth_length_m << " m); scale error "
+                        << e.scale_error_pct << " %\n";
             }
             return kExitOk;
           }};

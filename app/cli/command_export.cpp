@@ -17,7 +17,8 @@ Command add_export_command(CLI::App& parent) {
     bool pannellum = false, geojson = false, json = false, http_only = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("export", "Export a packaged walkthrough (web player, tour.json, images)");
+  CLI::App* sub =
+      parent.add_subcommand("export", "Export a packaged walkthrough (web player, tour.json, images)");
   sub->add_option("--project", o->project, "Project file (*.plenopath)")->required();
   sub->add_option("--out", o->out, "Output folder, or a file ending in .zip")->required();
   sub->add_option("--max-size", o->max_size, "Full keyframe width in pixels (default: the project's, 4096)");
@@ -38,12 +39,14 @@ Command add_export_command(CLI::App& parent) {
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
             int last_percent = -1;
-            const TourExportReport report = export_tour(project, options, [&](double f, const std::string& stage) {
-              const int percent = static_cast<int>(f * 100);
-              if (percent != last_percent) std::cerr << "\rexport: " << percent << "% " << stage << "        ";
-              last_percent = percent;
-              return true;
-            });
+            const TourExportReport report =
+                export_tour(project, options, [&](double f, const std::string& stage) {
+                  const int percent = static_cast<int>(f * 100);
+                  if (percent != last_percent)
+                    std::cerr << "\rexport: " << percent << "% " << stage << "        ";
+                  last_percent = percent;
+                  return true;
+                });
             std::cerr << "\n";
             for (const std::string& w : report.warnings) std::cerr << "export: warning: " << w << "\n";
             if (o->json) {

@@ -78,7 +78,8 @@ void print_text(const nlohmann::json& s) {
   std::cout << "Keyframes " << s["keyframes"]["count"] << " (" << s["keyframes"]["method"].get<std::string>()
             << ")\n";
   std::cout << "Hotspots  " << s["hotspots"] << "\n";
-  for (const auto& w : s["hotspot_warnings"]) std::cout << "  warning: " << w["message"].get<std::string>() << "\n";
+  for (const auto& w : s["hotspot_warnings"])
+    std::cout << "  warning: " << w["message"].get<std::string>() << "\n";
 }
 
 }  // namespace

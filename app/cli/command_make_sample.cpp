@@ -53,12 +53,13 @@ int run(const Options& o) {
   project.capture.height = height;
   project.capture.frame_rate = 30.0;
   project.capture.camera_height_m = 1.6;
-  for (const auto& f : path.frames) project.capture.frame_names.push_back(fs::path(f.file).filename().string());
+  for (const auto& f : path.frames)
+    project.capture.frame_names.push_back(fs::path(f.file).filename().string());
   project.tour.title = "Office sample";
   save_project(project, (dir / "office.plenopath").string());
   fs::remove(dir / "office.plenopath.bak");
-  std::cout << "sample: wrote " << dxf << ", office_path.json (" << path.size() << " frames, " << path.length()
-            << " m) and office.plenopath in " << dir.string() << "\n"
+  std::cout << "sample: wrote " << dxf << ", office_path.json (" << path.size() << " frames, "
+            << path.length() << " m) and office.plenopath in " << dir.string() << "\n"
             << "render its capture with: plenopath render --plan " << dxf << " --path "
             << (dir / "office_path.json").string() << " --size " << o.size << " --depth --out "
             << (dir / "capture").string() << "\n";
@@ -69,7 +70,8 @@ int run(const Options& o) {
 
 Command add_make_sample_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("make-sample", "Write the office sample: DXF plan, default path, project");
+  CLI::App* sub =
+      parent.add_subcommand("make-sample", "Write the office sample: DXF plan, default path, project");
   sub->add_option("--out", o->out, "Folder")->capture_default_str();
   sub->add_option("--frames", o->frames, "Frames of the default walk")->capture_default_str();
   sub->add_option("--size", o->size, "Capture size the project expects")->capture_default_str();

@@ -1,6 +1,6 @@
-// `plenopath refine --project P.plenopath [--anchors ANCHORS.json] [--out OUT.plenopath] [--preview] [--json]`:
-// bends the project's path onto the author's anchors (Ceres pose graph with drift; --preview: the fast warp)
-// and saves the project (atomically, keeping FILE.bak).
+// `plenopath refine --project P.plenopath [--anchors ANCHORS.json] [--out OUT.plenopath] [--preview]
+// [--json]`: bends the project's path onto the author's anchors (Ceres pose graph with drift; --preview: the
+// fast warp) and saves the project (atomically, keeping FILE.bak).
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,8 +22,9 @@ Command add_refine_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = parent.add_subcommand("refine", "Correct path drift with anchors (frame -> plan position)");
   sub->add_option("--project", o->project, "Project file (*.plenopath)")->required();
-  sub->add_option("--anchors", o->anchors, "Anchors file: [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...]; "
-                                           "default: the project's anchors (the file's replace them)");
+  sub->add_option("--anchors", o->anchors,
+                  "Anchors file: [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...]; "
+                  "default: the project's anchors (the file's replace them)");
   sub->add_option("--out", o->out, "Write the corrected project here (default: in place, keeping .bak)");
   sub->add_flag("--preview", o->preview, "Only the fast warp between anchors, no refinement");
   sub->add_flag("--json", o->json, "Machine-readable report");
@@ -34,18 +35,23 @@ Command add_refine_command(CLI::App& parent) {
             std::vector<GpsPrior> gps;
             if (!o->preview) {
               gps = gps_priors_for_path(project);
-              if (!gps.empty()) std::cerr << "refine: " << gps.size() << " frames have a GPS fix (weak priors)\n";
+              if (!gps.empty())
+                std::cerr << "refine: " << gps.size() << " frames have a GPS fix (weak priors)\n";
             }
             if (project.anchors.empty() && gps.size() < 2)
-              throw plenopath::Error(o->project + ": no anchors (place some in the studio or pass --anchors FILE)");
+              throw plenopath::Error(o->project +
+                                     ": no anchors (place some in the studio or pass --anchors FILE)");
             AnchorRefinementReport report;
             if (o->preview) {
               project.path = preview_path_with_anchors(project.path, project.anchors);
             } else {
-              project.path = refine_path_with_anchors(project.path, project.anchors, {}, &report, [](int iteration) {
-                std::cerr << "\rrefine: iteration " << iteration << "   ";
-                return true;
-              }, gps);
+              project.path = refine_path_with_anchors(
+                  project.path, project.anchors, {}, &report,
+                  [](int iteration) {
+                    std::cerr << "\rrefine: iteration " << iteration << "   ";
+                    return true;
+                  },
+                  gps);
               std::cerr << "\n";
             }
             project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
@@ -67,8 +73,8 @@ Command add_refine_command(CLI::App& parent) {
                                .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                         << "\n";
             } else {
-              std::cout << (o->preview ? "Warped" : "Refined") << " " << project.path.size() << " frames onto "
-                        << project.anchors.size() << " anchors; saved " << out << "\n";
+              std::cout << (o->preview ? "Warped" : "Refined") << " " << project.path.size()
+                        << " frames onto " << project.anchors.size() << " anchors; saved " << out << "\n";
               for (const auto& r : residuals)
                 std::cout << "  frame " << r["index"] << ": " << std::fixed << std::setprecision(3)
                           << r["distance_m"].get<double>() << " m from its anchor\n";

@@ -89,12 +89,13 @@ int run(const Options& o) {
     if (rig) {
       const std::vector<cv::Mat> heads = render_heads(scene, *rig, pose, render_options);
       for (std::size_t h = 0; h < heads.size(); ++h)
-        write_image((fs::path(o.out) / "heads" / rig->heads[h].name / frame_name(pose.index, "jpg")).string(), heads[h],
-                    o.jpeg_quality);
+        write_image((fs::path(o.out) / "heads" / rig->heads[h].name / frame_name(pose.index, "jpg")).string(),
+                    heads[h], o.jpeg_quality);
     } else {
       render_panorama(scene, pose, render_options, pano);
       write_image((fs::path(o.out) / pose.file).string(), pano.rgb, o.jpeg_quality);
-      if (o.depth) write_depth_png((fs::path(o.out) / "depth" / frame_name(pose.index, "png")).string(), pano.depth);
+      if (o.depth)
+        write_depth_png((fs::path(o.out) / "depth" / frame_name(pose.index, "png")).string(), pano.depth);
     }
     progress.step(static_cast<int>(i + 1));
   }
@@ -109,11 +110,14 @@ int run(const Options& o) {
 
 Command add_render_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("render", "Render the synthetic surround camera along a path, with ground truth");
-  sub->add_option("--plan", o->plan, "Floor plan (DXF), or office-sample for the built-in sample")->required();
+  CLI::App* sub =
+      parent.add_subcommand("render", "Render the synthetic surround camera along a path, with ground truth");
+  sub->add_option("--plan", o->plan, "Floor plan (DXF), or office-sample for the built-in sample")
+      ->required();
   sub->add_option("--layers", o->layers, "Layers to render, comma-separated (default: all visible)");
   auto* path = sub->add_option("--path", o->path, "Path file (JSON) to render along");
-  auto* auto_path = sub->add_flag("--auto-path", o->auto_path, "Walk through the rooms automatically (default)");
+  auto* auto_path =
+      sub->add_flag("--auto-path", o->auto_path, "Walk through the rooms automatically (default)");
   path->excludes(auto_path);
   sub->add_option("--step", o->step, "Auto path: metres between frames")->capture_default_str();
   sub->add_option("--frames", o->frames, "At most this many frames (0 = all)")->capture_default_str();
@@ -121,7 +125,8 @@ Command add_render_command(CLI::App& parent) {
   sub->add_flag("--depth", o->depth, "Also write depth maps (16-bit PNG, millimetres)");
   sub->add_option("--noise", o->noise, "Sensor noise sigma (grey levels)")->capture_default_str();
   sub->add_option("--people", o->people, "Moving people")->capture_default_str();
-  sub->add_option("--exposure-drift", o->exposure_drift, "Relative exposure drift amplitude")->capture_default_str();
+  sub->add_option("--exposure-drift", o->exposure_drift, "Relative exposure drift amplitude")
+      ->capture_default_str();
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
   sub->add_option("--seed", o->seed, "Texture seed")->capture_default_str();
   sub->add_option("--wall-height", o->wall_height, "Wall height, metres")->capture_default_str();

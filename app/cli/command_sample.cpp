@@ -15,8 +15,8 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
-#include "processing/plan/dxf_import.h"
 #include "processing/frame_source.h"
+#include "processing/plan/dxf_import.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"
 #include "processing/uniform_sampling.h"
@@ -38,15 +38,16 @@ struct Options {
 };
 
 nlohmann::json geometric_json(const GeometricLoss& g) {
-  return {{"mean", g.mean}, {"p95", g.p95}, {"max", g.max}, {"dropped", g.dropped}, {"evaluated", g.evaluated},
-          {"inexact", g.inexact}};
+  return {{"mean", g.mean},           {"p95", g.p95},        {"max", g.max}, {"dropped", g.dropped},
+          {"evaluated", g.evaluated}, {"inexact", g.inexact}};
 }
 
 int run(const Options& o, CLI::App* sub) {
   const bool from_project = !o.project.empty();
   if (!from_project && o.path.empty()) {
-    std::cerr << "plenopath sample: give --path PATH.json (with --plan for visibility), or --project P.plenopath\n"
-              << sub->help();
+    std::cerr
+        << "plenopath sample: give --path PATH.json (with --plan for visibility), or --project P.plenopath\n"
+        << sub->help();
     return kExitUsage;
   }
   if (o.save && !from_project) {
@@ -59,8 +60,10 @@ int run(const Options& o, CLI::App* sub) {
 
   // The plan (optional for uniform and depth).
   FloorPlan plan;
-  if (!o.plan.empty()) plan = import_dxf(o.plan, o.import);
-  else if (from_project) plan = project.plan;
+  if (!o.plan.empty())
+    plan = import_dxf(o.plan, o.import);
+  else if (from_project)
+    plan = project.plan;
   const CameraPath path = from_project ? project.path : read_path_file(o.path);
   if (path.empty()) throw Error(where + ": the camera path has no frames");
   std::unique_ptr<VisibilityIndex> index;
@@ -93,8 +96,8 @@ int run(const Options& o, CLI::App* sub) {
   }
   auto check_frame = [&](int index) {
     if (index < 0 || index >= source->frame_count())
-      throw Error(source->source() + ": the path's frame " + std::to_string(index) + " is not in the capture (" +
-                  std::to_string(source->frame_count()) + " frames)");
+      throw Error(source->source() + ": the path's frame " + std::to_string(index) +
+                  " is not in the capture (" + std::to_string(source->frame_count()) + " frames)");
   };
 
   SamplingInputs inputs;
@@ -104,7 +107,7 @@ int run(const Options& o, CLI::App* sub) {
   VisibilityCells cells;
   if (o.parameters.method == "visibility" && inputs.visibility.rule == VisibilityRule::cell_rule) {
     cells = from_project && !project.visibility.empty() && o.plan.empty() ? project.visibility
-                                                                           : index->cells_along_path(path);
+                                                                          : index->cells_along_path(path);
     inputs.cells = &cells;
   }
   std::vector<DepthVolume> volumes;
@@ -113,11 +116,15 @@ int run(const Options& o, CLI::App* sub) {
     if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
     if (source->depth_match_count() == 0)
       throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
-    volumes = depth_volumes_along_path(path, [&](int i) {
-      check_frame(i);
-      if (!source->has_depth(i)) throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
-      return source->read_depth(i);
-    }, {}, {}, &depth_envelopes);
+    volumes = depth_volumes_along_path(
+        path,
+        [&](int i) {
+          check_frame(i);
+          if (!source->has_depth(i))
+            throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
+          return source->read_depth(i);
+        },
+        {}, {}, &depth_envelopes);
     inputs.depth_volumes = &volumes;
     inputs.depth_envelopes = &depth_envelopes;
   }
@@ -143,10 +150,13 @@ int run(const Options& o, CLI::App* sub) {
     PhotometricOptions options;
     options.max_frames = o.photometric_frames;
     if (options.max_frames > 0) {
-      loss.photometric = photometric_loss(path, keyframes, [&](int i) {
-        check_frame(i);
-        return source->read(i);
-      }, options);
+      loss.photometric = photometric_loss(
+          path, keyframes,
+          [&](int i) {
+            check_frame(i);
+            return source->read(i);
+          },
+          options);
       loss.has_photometric = true;
     }
   }
@@ -183,15 +193,18 @@ int run(const Options& o, CLI::App* sub) {
     std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return kExitOk;
   }
-  std::cout << std::fixed << std::setprecision(3) << "Method     " << keyframes.parameters.method << "\nKept       "
-            << loss.kept << " of " << loss.total << " frames (" << std::setprecision(1) << loss.reduction_ratio
-            << " : 1), largest gap " << std::setprecision(2) << loss.largest_gap_m << " m\n";
+  std::cout << std::fixed << std::setprecision(3) << "Method     " << keyframes.parameters.method
+            << "\nKept       " << loss.kept << " of " << loss.total << " frames (" << std::setprecision(1)
+            << loss.reduction_ratio << " : 1), largest gap " << std::setprecision(2) << loss.largest_gap_m
+            << " m\n";
   if (loss.has_geometric)
-    std::cout << std::setprecision(4) << "Geometric  mean " << loss.geometric.mean << ", p95 " << loss.geometric.p95
-              << " (1 - IoU of envelopes, " << loss.geometric.evaluated << " dropped frames)\n";
+    std::cout << std::setprecision(4) << "Geometric  mean " << loss.geometric.mean << ", p95 "
+              << loss.geometric.p95 << " (1 - IoU of envelopes, " << loss.geometric.evaluated
+              << " dropped frames)\n";
   if (loss.has_photometric && loss.photometric.frames > 0)
     std::cout << std::setprecision(2) << "Photometric PSNR " << loss.photometric.psnr_mean_db << " dB, SSIM "
-              << std::setprecision(3) << loss.photometric.ssim_mean << " (" << loss.photometric.frames << " frames)\n";
+              << std::setprecision(3) << loss.photometric.ssim_mean << " (" << loss.photometric.frames
+              << " frames)\n";
   std::cout << "Keyframes  (coarse to fine)";
   for (int i : order) std::cout << " " << i;
   std::cout << "\n";
@@ -204,15 +217,19 @@ int run(const Options& o, CLI::App* sub) {
 Command add_sample_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
   o->parameters.method = "";
-  o->parameters.exponent = CellRuleOptions{}.exponent;  // measured best in the plan (cell_rule.h), not the seed's 3
-  CLI::App* sub = parent.add_subcommand("sample", "Keyframes along the path (uniform, visibility or depth) and what they lose");
+  o->parameters.exponent =
+      CellRuleOptions{}.exponent;  // measured best in the plan (cell_rule.h), not the seed's 3
+  CLI::App* sub = parent.add_subcommand(
+      "sample", "Keyframes along the path (uniform, visibility or depth) and what they lose");
   auto* plan = sub->add_option("--plan", o->plan, "Floor plan (*.dxf, ASCII)");
   sub->add_option("--layers", o->import.layers, "Import only these layers (default: all)");
-  sub->add_option("--occluders", o->import.occluder_layers, "Layers that block sight (default: guessed from the names)");
+  sub->add_option("--occluders", o->import.occluder_layers,
+                  "Layers that block sight (default: guessed from the names)");
   sub->add_option("--units", o->import.units_override, "Units of the plan file (mm, cm, m, in, ft, ...)");
   auto* path = sub->add_option("--path", o->path, "Path file (JSON, metres)");
-  auto* capture = sub->add_option("--capture", o->capture,
-                                  "Frames (folder or video; a folder holding frames/ and depth/ is taken apart)");
+  auto* capture =
+      sub->add_option("--capture", o->capture,
+                      "Frames (folder or video; a folder holding frames/ and depth/ is taken apart)");
   sub->add_option("--depth", o->depth, "Depth maps folder (16-bit PNG mm or EXR m), for --method depth");
   auto* project = sub->add_option("--project", o->project, "Project file: plan, path and capture from it");
   project->excludes(path)->excludes(capture);
@@ -220,15 +237,19 @@ Command add_sample_command(CLI::App& parent) {
   sub->add_option("--method", o->parameters.method, "uniform, visibility or depth")
       ->required()
       ->check(CLI::IsMember({"uniform", "visibility", "depth"}));
-  auto* count = sub->add_option("--count", o->parameters.count, "Budget: number of keyframes")->check(CLI::PositiveNumber);
-  auto* ratio = sub->add_option("--ratio", o->parameters.ratio, "Budget: frames per keyframe (reduction ratio)")
+  auto* count = sub->add_option("--count", o->parameters.count, "Budget: number of keyframes")
                     ->check(CLI::PositiveNumber);
+  auto* ratio =
+      sub->add_option("--ratio", o->parameters.ratio, "Budget: frames per keyframe (reduction ratio)")
+          ->check(CLI::PositiveNumber);
   count->excludes(ratio);
-  sub->add_option("--exponent", o->parameters.exponent, "Exponent e of the cell rule l^e / v (default 1; the seed's is 3)")
+  sub->add_option("--exponent", o->parameters.exponent,
+                  "Exponent e of the cell rule l^e / v (default 1; the seed's is 3)")
       ->check(CLI::Range(0.0, 10.0));
   sub->add_option("--boost", o->parameters.transition_boost, "Transition boost of the cell rule (default 1)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--rule", o->rule, "Visibility rule: expected_loss (default) or cell_rule (the seed's l^e / v)")
+  sub->add_option("--rule", o->rule,
+                  "Visibility rule: expected_loss (default) or cell_rule (the seed's l^e / v)")
       ->check(CLI::IsMember({"expected_loss", "cell_rule"}));
   sub->add_option("--pin", o->pinned, "Frames always kept (capture indices)")->delimiter(',');
   sub->add_option("--min-spacing", o->parameters.min_spacing_m, "Minimum metres between keyframes")

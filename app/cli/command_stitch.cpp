@@ -33,11 +33,13 @@ int run(const Options& o) {
   if (const std::string e = so.check(); !e.empty()) throw Error(e);
   const fs::path first_head = fs::path(o.in) / "heads" / rig.heads[0].name;
   if (!fs::is_directory(first_head))
-    throw file_error(first_head.string(), "no such folder (expected per-head images from `plenopath render --rig`)");
+    throw file_error(first_head.string(),
+                     "no such folder (expected per-head images from `plenopath render --rig`)");
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(first_head)) {
     const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".jpg" || ext == ".png" || ext == ".jpeg")) names.push_back(entry.path().filename().string());
+    if (entry.is_regular_file() && (ext == ".jpg" || ext == ".png" || ext == ".jpeg"))
+      names.push_back(entry.path().filename().string());
   }
   std::sort(names.begin(), names.end(), natural_less);
   if (names.empty()) throw file_error(first_head.string(), "holds no head images");
@@ -52,12 +54,14 @@ int run(const Options& o) {
       cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
       if (img.empty()) throw file_error(file, "missing or unreadable head image");
       if (img.cols != head.width || img.rows != head.height)
-        throw file_error(file, "is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) + " but head '" +
-                                   head.name + "' is " + std::to_string(head.width) + "x" + std::to_string(head.height));
+        throw file_error(file, "is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                                   " but head '" + head.name + "' is " + std::to_string(head.width) + "x" +
+                                   std::to_string(head.height));
       images.push_back(img);
     }
     const std::string stem = fs::path(names[i]).stem().string();
-    write_image((fs::path(o.out) / "frames" / (stem + ".jpg")).string(), stitch_heads(maps, images), o.jpeg_quality);
+    write_image((fs::path(o.out) / "frames" / (stem + ".jpg")).string(), stitch_heads(maps, images),
+                o.jpeg_quality);
     progress.step(static_cast<int>(i + 1));
   }
   progress.finish();
@@ -65,7 +69,9 @@ int run(const Options& o) {
   const fs::path truth_out = fs::path(o.out) / "groundtruth.json";
   if (fs::exists(truth) && !(fs::exists(truth_out) && fs::equivalent(truth, truth_out)))
     fs::copy_file(truth, truth_out, fs::copy_options::overwrite_existing);
-  if (!o.quiet) std::cerr << "stitch: " << names.size() << " panoramas in " << (fs::path(o.out) / "frames").string() << "\n";
+  if (!o.quiet)
+    std::cerr << "stitch: " << names.size() << " panoramas in " << (fs::path(o.out) / "frames").string()
+              << "\n";
   return kExitOk;
 }
 
@@ -73,12 +79,14 @@ int run(const Options& o) {
 
 Command add_stitch_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("stitch", "Stitch per-head images of a multi-head rig into panoramas");
+  CLI::App* sub =
+      parent.add_subcommand("stitch", "Stitch per-head images of a multi-head rig into panoramas");
   sub->add_option("--rig", o->rig, "Rig calibration (JSON)")->required();
   sub->add_option("--in", o->in, "Folder with heads/<head>/ images")->required();
   sub->add_option("--out", o->out, "Output folder (frames/ is created)")->required();
   sub->add_option("--size", o->size, "Panorama size WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--stitch-distance", o->stitch_distance, "Metres at which head offsets are compensated (0 = far)")
+  sub->add_option("--stitch-distance", o->stitch_distance,
+                  "Metres at which head offsets are compensated (0 = far)")
       ->capture_default_str();
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -44,7 +44,8 @@ std::vector<int> capture_positions(const FrameSource& source) {
       std::string ext = e.path().extension().string();
       std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
       if (name.empty() || name[0] == '.') continue;
-      if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".exr")
+      if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff" ||
+          ext == ".exr")
         names.push_back(name);
     }
     std::sort(names.begin(), names.end(), natural_less);
@@ -76,25 +77,31 @@ Command add_track_command(CLI::App& parent) {
     std::string anchors;                 // anchors file: the path is refined onto them after tracking
   };
   auto options = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("track", "Recover the camera path (x, y, heading per frame) from the panoramas");
-  sub->add_option("--capture", options->capture, "Folder of equirectangular frames (natural sort order) or a video")
+  CLI::App* sub =
+      parent.add_subcommand("track", "Recover the camera path (x, y, heading per frame) from the panoramas");
+  sub->add_option("--capture", options->capture,
+                  "Folder of equirectangular frames (natural sort order) or a video")
       ->required();
   sub->add_option("--camera-height", options->camera_height,
                   "Camera height above the floor in metres: gives metric scale (else the scale is relative)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--known-distance", options->known_distance,
-                  "Metric scale from a distance the author knows: FRAME_A FRAME_B METRES (used without --camera-height)")
+                  "Metric scale from a distance the author knows: FRAME_A FRAME_B METRES (used without "
+                  "--camera-height)")
       ->expected(3);
   sub->add_option("--first", options->first, "First frame tracked (position in the capture, from 0)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--last", options->last, "Last frame tracked, inclusive (default: the capture's last)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--stride", options->stride, "Track every K-th frame from --first on")->check(CLI::PositiveNumber);
-  sub->add_option("--anchors", options->anchors,
-                  "Anchors file [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...] (plan metres): after tracking, "
-                  "align the path to them and refine it with them as priors (corrects drift, puts it on the plan)");
+  sub->add_option("--stride", options->stride, "Track every K-th frame from --first on")
+      ->check(CLI::PositiveNumber);
+  sub->add_option(
+      "--anchors", options->anchors,
+      "Anchors file [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...] (plan metres): after tracking, "
+      "align the path to them and refine it with them as priors (corrects drift, puts it on the plan)");
   sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
-  sub->add_option("--work-width", options->work_width, "Tracking resolution (frames are resized to this width)")
+  sub->add_option("--work-width", options->work_width,
+                  "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
@@ -151,7 +158,8 @@ Command add_track_command(CLI::App& parent) {
               }
               return true;
             };
-            EgomotionResult r = EgomotionTracker::run(n, [&](int i) { return source->read(i); }, eo, progress);
+            EgomotionResult r = EgomotionTracker::run(
+                n, [&](int i) { return source->read(i); }, eo, progress);
             for (int i = 0; i < n && i < static_cast<int>(r.path.frames.size()); ++i) {
               r.path.frames[i].index = positions[i];
               if (source->kind() == CaptureKind::kImageFolder) r.path.frames[i].file = source->frame_name(i);
@@ -170,36 +178,35 @@ Command add_track_command(CLI::App& parent) {
               residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
             }
             if (!options->out.empty()) write_path_file(r.path, options->out);
-            const nlohmann::json summary = {
-                {"capture", options->capture},
-                {"frames", r.path.size()},
-                {"first_index", positions.empty() ? 0 : positions.front()},
-                {"last_index", positions.empty() ? 0 : positions.back()},
-                {"stride", options->stride},
-                {"keyframes", r.keyframes.size()},
-                {"points", r.points},
-                {"length", r.path.length()},
-                {"scale_source", r.scale_source},
-                {"flagged_frames", r.flagged_frames},
-                {"loop_closures", r.loop_closures},
-                {"loop_frames", r.loop_frames},
-                {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
-                {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
-                {"anchors", anchors.size()},
-                {"anchor_residuals", residuals},
-                {"out", options->out}};
+            const nlohmann::json summary = {{"capture", options->capture},
+                                            {"frames", r.path.size()},
+                                            {"first_index", positions.empty() ? 0 : positions.front()},
+                                            {"last_index", positions.empty() ? 0 : positions.back()},
+                                            {"stride", options->stride},
+                                            {"keyframes", r.keyframes.size()},
+                                            {"points", r.points},
+                                            {"length", r.path.length()},
+                                            {"scale_source", r.scale_source},
+                                            {"flagged_frames", r.flagged_frames},
+                                            {"loop_closures", r.loop_closures},
+                                            {"loop_frames", r.loop_frames},
+                                            {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
+                                            {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
+                                            {"anchors", anchors.size()},
+                                            {"anchor_residuals", residuals},
+                                            {"out", options->out}};
             if (options->json) {
               std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
               std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
                         << r.points << " points), path length " << std::fixed << std::setprecision(2)
                         << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
-                        << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged, "
-                        << r.loop_closures << " loop closures\n";
+                        << ", scale from " << r.scale_source << ", " << r.flagged_frames
+                        << " frames flagged, " << r.loop_closures << " loop closures\n";
               if (!anchors.empty())
-                std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
-                          << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "
-                          << anchor_report.iterations << " iterations\n";
+                std::cout << "Aligned and refined with " << anchors.size() << " anchors from "
+                          << options->anchors << ": largest anchor residual " << std::setprecision(3)
+                          << worst_residual << " m, " << anchor_report.iterations << " iterations\n";
               if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
             }
             return kExitOk;

@@ -25,13 +25,15 @@ Command add_visibility_command(CLI::App& parent) {
     bool json = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* sub = parent.add_subcommand("visibility", "Envelope of a point, or events and cells along a path");
+  CLI::App* sub =
+      parent.add_subcommand("visibility", "Envelope of a point, or events and cells along a path");
   sub->add_option("--plan", options->plan, "Floor plan (*.dxf, ASCII)")->required();
   sub->add_option("--layers", options->import.layers, "Import only these layers (default: all)");
   sub->add_option("--occluders", options->import.occluder_layers,
                   "Layers that block sight (default: guessed from the names)");
   sub->add_option("--units", options->import.units_override, "Units of the file (mm, cm, m, in, ft, ...)");
-  auto* point = sub->add_option("--point", options->point, "Query point X,Y in metres")->delimiter(',')->expected(2);
+  auto* point =
+      sub->add_option("--point", options->point, "Query point X,Y in metres")->delimiter(',')->expected(2);
   auto* path = sub->add_option("--path", options->path, "Path file (JSON, metres)");
   point->excludes(path);
   sub->add_option("--samples", options->samples, "Also sample the radial function at N azimuths (--point)")
@@ -58,9 +60,9 @@ Command add_visibility_command(CLI::App& parent) {
               if (options->json) {
                 std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
               } else {
-                std::cout << std::fixed << std::setprecision(3) << "Point     (" << p.x() << ", " << p.y() << "): "
-                          << to_string(e.status) << "\nEnvelope  " << e.area << " m^2, " << e.polygon.size()
-                          << " vertices\n";
+                std::cout << std::fixed << std::setprecision(3) << "Point     (" << p.x() << ", " << p.y()
+                          << "): " << to_string(e.status) << "\nEnvelope  " << e.area << " m^2, "
+                          << e.polygon.size() << " vertices\n";
               }
               return kExitOk;
             }
@@ -85,12 +87,12 @@ Command add_visibility_command(CLI::App& parent) {
             if (options->json) {
               std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
-              std::cout << std::fixed << std::setprecision(3) << "Path      " << camera_path.size() << " frames, "
-                        << camera_path.length() << " m\nEvents    " << cells.events.size() << "\nCells     "
-                        << cells.cells.size() << "\n";
+              std::cout << std::fixed << std::setprecision(3) << "Path      " << camera_path.size()
+                        << " frames, " << camera_path.length() << " m\nEvents    " << cells.events.size()
+                        << "\nCells     " << cells.cells.size() << "\n";
               for (const auto& c : cells.cells)
-                std::cout << "  frames " << c.first_frame << "-" << c.last_frame << "  l " << c.length << " m  v "
-                          << c.area_mid << " m^2\n";
+                std::cout << "  frames " << c.first_frame << "-" << c.last_frame << "  l " << c.length
+                          << " m  v " << c.area_mid << " m^2\n";
             }
             return kExitOk;
           }};

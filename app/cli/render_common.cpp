@@ -21,8 +21,8 @@ FloorPlan load_render_plan(const std::string& plan) {
 void parse_size(const std::string& text, int* width, int* height, const std::string& option) {
   int w = 0, h = 0;
   char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 8 || h < 4 ||
-      w > 32768 || h > 16384)
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 8 ||
+      h < 4 || w > 32768 || h > 16384)
     throw Error(option + ": expected WIDTHxHEIGHT such as 2048x1024, got '" + text + "'");
   *width = w;
   *height = h;
@@ -57,7 +57,10 @@ void write_depth_png(const std::string& file, const cv::Mat& depth_m) {
 }
 
 Progress::Progress(std::string what, int total, bool quiet)
-    : what_(std::move(what)), total_(total), quiet_(quiet), tty_(isatty(2) != 0),
+    : what_(std::move(what)),
+      total_(total),
+      quiet_(quiet),
+      tty_(isatty(2) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
 void Progress::step(int done) {
@@ -67,7 +70,8 @@ void Progress::step(int done) {
   last_printed_ = decile;
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   char line[200];
-  std::snprintf(line, sizeof line, "%s: %d/%d frames, %.1f frames/s", what_.c_str(), done, total_, s > 0 ? done / s : 0.0);
+  std::snprintf(line, sizeof line, "%s: %d/%d frames, %.1f frames/s", what_.c_str(), done, total_,
+                s > 0 ? done / s : 0.0);
   std::cerr << (tty_ ? "\r" : "") << line << (tty_ ? "" : "\n") << std::flush;
 }
 

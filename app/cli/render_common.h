@@ -1,9 +1,8 @@
 #pragma once
 // Helpers shared by `plenopath render`, `stitch` and `sample`: plan loading, sizes, progress, image writing.
 #include <chrono>
-#include <string>
-
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "model/floor_plan.h"
 
@@ -26,6 +25,7 @@ class Progress {
   Progress(std::string what, int total, bool quiet);
   void step(int done);
   void finish();
+
  private:
   std::string what_;
   int total_;

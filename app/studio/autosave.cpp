@@ -62,7 +62,11 @@ bool Autosave::write_now() {
       file.isEmpty() ? QDir::homePath().toStdString() : QFileInfo(file).absolutePath().toStdString();
   try {
     QDir().mkpath(QFileInfo(side).absolutePath());
-    write_file_atomically(side.toStdString(), project_to_json(document_.project(), base).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
+    write_file_atomically(side.toStdString(),
+                          project_to_json(document_.project(), base)
+                                  .dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                              "\n",
+                          false);
   } catch (const std::exception& e) {
     last_error_ = QString::fromStdString(e.what());
     return false;

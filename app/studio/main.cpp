@@ -2,6 +2,7 @@
 //  [--compute-visibility] [--resample] [--autosave-seconds S]`: the editor.
 // --screenshot opens the project, waits until the panorama shows its frame, saves an image of the whole
 // window and exits (app/take-screenshot.sh uses it for the README).
+#include <QVTKOpenGLNativeWidget.h>
 #include <malloc.h>
 
 #include <QApplication>
@@ -10,7 +11,6 @@
 #include <QPainter>
 #include <QSurfaceFormat>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
 #include <cstdio>
 
 #include "app/studio/autosave.h"
@@ -18,11 +18,11 @@
 #include "app/studio/main_window.h"
 #include "app/studio/profile_service.h"
 #include "app/studio/studio_tasks.h"
-#include "widgets/sampling_panel.h"
-#include "widgets/task_runner.h"
 #include "widgets/map_view.h"
 #include "widgets/panorama_view.h"
 #include "widgets/project_document.h"
+#include "widgets/sampling_panel.h"
+#include "widgets/task_runner.h"
 
 namespace {
 
@@ -77,14 +77,18 @@ int main(int argc, char** argv) {
   parser.addHelpOption();
   parser.addVersionOption();
   parser.addPositionalArgument("project", "Project file (*.plenopath) to open.", "[PROJECT]");
-  const QCommandLineOption screenshot(QString("screenshot"), "Save an image of the window to FILE and exit.", "FILE");
+  const QCommandLineOption screenshot(QString("screenshot"), "Save an image of the window to FILE and exit.",
+                                      "FILE");
   const QCommandLineOption frame(QString("frame"), "Go to path position N after opening.", "N");
-  const QCommandLineOption look(QString("look"), "Panorama look azimuth in degrees (with --screenshot).", "DEG");
+  const QCommandLineOption look(QString("look"), "Panorama look azimuth in degrees (with --screenshot).",
+                                "DEG");
   const QCommandLineOption size(QString("size"), "Window size WxH (with --screenshot).", "WxH");
-  const QCommandLineOption autosave_seconds(QString("autosave-seconds"), "Autosave interval (default 180).", "S");
+  const QCommandLineOption autosave_seconds(QString("autosave-seconds"), "Autosave interval (default 180).",
+                                            "S");
   const QCommandLineOption compute_visibility(QString("compute-visibility"),
                                               "After opening, compute visibility if the project has none.");
-  const QCommandLineOption resample(QString("resample"), "After opening, sample keyframes if there are none.");
+  const QCommandLineOption resample(QString("resample"),
+                                    "After opening, sample keyframes if there are none.");
   parser.addOptions({screenshot, frame, look, size, autosave_seconds, compute_visibility, resample});
   parser.process(app);
 

@@ -64,11 +64,12 @@ MainWindow::MainWindow(QWidget* parent)
       autosave_(new Autosave(*document_, kDefaultAutosaveMs, this)) {
   setObjectName("main_window");
   ask_recovery = [this](const QString& side) {
-    return QMessageBox::question(this, tr("Recover unsaved changes?"),
-                                 tr("Plenopath Studio did not close properly. Changes made after the last save "
-                                    "were autosaved to\n%1\n\nRecover them?")
-                                     .arg(side),
-                                 QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes) == QMessageBox::Yes;
+    return QMessageBox::question(
+               this, tr("Recover unsaved changes?"),
+               tr("Plenopath Studio did not close properly. Changes made after the last save "
+                  "were autosaved to\n%1\n\nRecover them?")
+                   .arg(side),
+               QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes) == QMessageBox::Yes;
   };
   ask_save_changes = [this] {
     return QMessageBox::warning(this, tr("Unsaved changes"), tr("Save the changes to this project?"),
@@ -79,8 +80,8 @@ MainWindow::MainWindow(QWidget* parent)
     QMessageBox::critical(this, title, message);
   };
   ask_export_target = [this](const QString& suggested) {
-    return QFileDialog::getSaveFileName(this, tr("Export tour — a folder name, or a file ending in .zip"), suggested,
-                                        tr("Tour folder (*);;Tour archive (*.zip)"));
+    return QFileDialog::getSaveFileName(this, tr("Export tour — a folder name, or a file ending in .zip"),
+                                        suggested, tr("Tour folder (*);;Tour archive (*.zip)"));
   };
 
   map_ = new widgets::MapView(*document_, this);
@@ -93,7 +94,8 @@ MainWindow::MainWindow(QWidget* parent)
   splitter->setSizes({550, 450});
   setCentralWidget(splitter);
   envelopes_ = new EnvelopeService(*document_, *map_, this);
-  connect(map_, &widgets::MapView::message, this, [this](const QString& text) { statusBar()->showMessage(text, 6000); });
+  connect(map_, &widgets::MapView::message, this,
+          [this](const QString& text) { statusBar()->showMessage(text, 6000); });
 
   create_docks();
   create_actions();
@@ -110,8 +112,8 @@ MainWindow::MainWindow(QWidget* parent)
   statusBar()->addPermanentWidget(task_label_);
   statusBar()->addPermanentWidget(progress_);
   statusBar()->addPermanentWidget(cancel_);
-  for (QWidget* w : {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(progress_),
-                     static_cast<QWidget*>(cancel_)})
+  for (QWidget* w :
+       {static_cast<QWidget*>(task_label_), static_cast<QWidget*>(progress_), static_cast<QWidget*>(cancel_)})
     w->hide();
   connect(cancel_, &QToolButton::clicked, tasks_, &widgets::TaskRunner::cancel);
   connect(tasks_, &widgets::TaskRunner::started, this, [this](const QString& title) {
@@ -131,8 +133,9 @@ MainWindow::MainWindow(QWidget* parent)
     cancel_->hide();
     statusBar()->showMessage(applied ? tr("Done") : tr("Stopped; nothing changed"), 4000);
   });
-  connect(tasks_, &widgets::TaskRunner::failed, this,
-          [this](const QString& title, const QString& message) { show_error(tr("%1 failed").arg(title), message); });
+  connect(tasks_, &widgets::TaskRunner::failed, this, [this](const QString& title, const QString& message) {
+    show_error(tr("%1 failed").arg(title), message);
+  });
 
   connect(document_, &widgets::ProjectDocument::file_name_changed, this, [this] { update_title(); });
   connect(document_, &widgets::ProjectDocument::modified_changed, this, [this] { update_title(); });
@@ -171,7 +174,9 @@ void MainWindow::create_docks() {
   QDockWidget* hotspots = dock(tr("Hotspots"), "hotspots_dock", hotspots_, Qt::RightDockWidgetArea);
   tabifyDockWidget(sampling, hotspots);
   connect(&panorama_->hotspot_editor(), &widgets::HotspotEditor::selection_changed, hotspots,
-          [hotspots](const QString& id) { if (!id.isEmpty()) hotspots->raise(); });
+          [hotspots](const QString& id) {
+            if (!id.isEmpty()) hotspots->raise();
+          });
   tabifyDockWidget(layers, undo);
   tabifyDockWidget(layers, anchors);
   sampling->raise();
@@ -243,7 +248,8 @@ void MainWindow::create_actions() {
   widgets::HotspotEditor* hotspot_editor = &panorama_->hotspot_editor();
   QAction* new_movie = hotspot_menu->addAction(tr("New &movie texture"));
   new_movie->setShortcut(tr("Ctrl+Shift+M"));
-  new_movie->setStatusTip(tr("Click four corners of a TV, poster or window in the panorama; it is placed on its wall"));
+  new_movie->setStatusTip(
+      tr("Click four corners of a TV, poster or window in the panorama; it is placed on its wall"));
   QAction* new_event = hotspot_menu->addAction(tr("New &event hotspot"));
   new_event->setShortcut(tr("Ctrl+Shift+H"));
   new_event->setStatusTip(tr("Click four corners (or Shift+click a polygon, Enter) of a region that reacts"));
@@ -257,12 +263,16 @@ void MainWindow::create_actions() {
     hotspot_editor->set_mode(on ? HotspotMode::kNewEvent : HotspotMode::kIdle);
     panorama_->setFocus();
   });
-  connect(hotspot_editor, &widgets::HotspotEditor::mode_changed, this, [new_movie, new_event](HotspotMode mode) {
-    new_movie->setChecked(mode == HotspotMode::kNewMovieTexture);
-    new_event->setChecked(mode == HotspotMode::kNewEvent);
-  });
+  connect(hotspot_editor, &widgets::HotspotEditor::mode_changed, this,
+          [new_movie, new_event](HotspotMode mode) {
+            new_movie->setChecked(mode == HotspotMode::kNewMovieTexture);
+            new_event->setChecked(mode == HotspotMode::kNewEvent);
+          });
   connect(hotspot_editor, &widgets::HotspotEditor::status_message, this, [this](const QString& message) {
-    if (message.isEmpty()) statusBar()->clearMessage(); else statusBar()->showMessage(message, 15000);
+    if (message.isEmpty())
+      statusBar()->clearMessage();
+    else
+      statusBar()->showMessage(message, 15000);
   });
   QAction* delete_hotspot = hotspot_menu->addAction(tr("&Delete selected hotspot"), this,
                                                     [hotspot_editor] { hotspot_editor->delete_selected(); });
@@ -279,7 +289,8 @@ void MainWindow::create_actions() {
   resample->setShortcut(tr("Ctrl+Shift+K"));
   QAction* refine = process->addAction(tr("Refine path with &anchors"));
   refine->setShortcut(tr("Ctrl+Shift+A"));
-  refine->setStatusTip(tr("Bend the path onto the anchors with the global refinement (Ceres); one undo step"));
+  refine->setStatusTip(
+      tr("Bend the path onto the anchors with the global refinement (Ceres); one undo step"));
   new RefineWithAnchorsReaction(refine, *this);
   anchors_->set_refine_action(refine);
 
@@ -309,7 +320,8 @@ void MainWindow::create_actions() {
 }
 
 void MainWindow::update_title() {
-  const QString name = document_->file_name().isEmpty() ? tr("Untitled") : QFileInfo(document_->file_name()).fileName();
+  const QString name =
+      document_->file_name().isEmpty() ? tr("Untitled") : QFileInfo(document_->file_name()).fileName();
   setWindowTitle(tr("%1%2 — Plenopath Studio").arg(name).arg(document_->is_modified() ? "*" : ""));
 }
 
@@ -340,8 +352,8 @@ bool MainWindow::recover_autosave_if_wanted(const QString& file) {
   }
   try {
     const Project recovered = Autosave::read(file);
-    document_->undo_stack()->push(new widgets::ReplacePartsCommand(*document_, tr("Recover autosaved changes"),
-                                                                   recovered, widgets::kEverythingChanged));
+    document_->undo_stack()->push(new widgets::ReplacePartsCommand(
+        *document_, tr("Recover autosaved changes"), recovered, widgets::kEverythingChanged));
   } catch (const std::exception& e) {
     show_error(tr("Cannot recover the autosave"), QString::fromStdString(e.what()));
     return false;
@@ -384,9 +396,13 @@ bool MainWindow::save_project_to(const QString& file) {
 bool MainWindow::maybe_save() {
   if (!document_->is_modified()) return true;
   switch (ask_save_changes()) {
-    case QMessageBox::Save: return save_project();
-    case QMessageBox::Discard: autosave_->discard(); return true;
-    default: return false;
+    case QMessageBox::Save:
+      return save_project();
+    case QMessageBox::Discard:
+      autosave_->discard();
+      return true;
+    default:
+      return false;
   }
 }
 

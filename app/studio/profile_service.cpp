@@ -53,7 +53,8 @@ void ProfileService::recompute() {
     const int n = static_cast<int>(path.size());
     if (index) {
       out.envelope_area.resize(n);
-      for (int i = 0; i < n && !*stop; ++i) out.envelope_area[i] = index->envelope_area(path.frames[i].position());
+      for (int i = 0; i < n && !*stop; ++i)
+        out.envelope_area[i] = index->envelope_area(path.frames[i].position());
     }
     if (!capture.depth_folder.empty() && capture.kind == CaptureKind::kImageFolder) {
       try {

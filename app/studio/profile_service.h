@@ -26,8 +26,8 @@ struct Profiles {
 class ProfileService : public QObject {
   Q_OBJECT
  public:
-  ProfileService(widgets::ProjectDocument& document, EnvelopeService& envelopes, widgets::TimelineStrip& strip,
-                 QObject* parent = nullptr);
+  ProfileService(widgets::ProjectDocument& document, EnvelopeService& envelopes,
+                 widgets::TimelineStrip& strip, QObject* parent = nullptr);
   ~ProfileService() override;
   const Profiles& profiles() const { return profiles_; }
   bool busy() const { return watcher_.isRunning() || again_; }

@@ -1,29 +1,27 @@
 #include "app/studio/reactions.h"
 
-#include <QDir>
-#include <algorithm>
-
-#include "model/error.h"
-#include "processing/export/tour_export.h"
-#include "widgets/walk_view.h"
-
 #include <QAction>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
 #include <QMessageBox>
 #include <QSettings>
 #include <QUndoStack>
+#include <algorithm>
 #include <exception>
 
 #include "app/studio/main_window.h"
 #include "app/studio/studio_tasks.h"
+#include "model/error.h"
 #include "model/path_io.h"
+#include "processing/export/tour_export.h"
 #include "widgets/capture_import_dialog.h"
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
 #include "widgets/project_document.h"
 #include "widgets/task_runner.h"
+#include "widgets/walk_view.h"
 
 namespace plenopath::studio {
 
@@ -109,10 +107,11 @@ void ExportTourReaction::on_triggered() {
   const std::string out = output.toStdString();
   window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, widgets::TaskProgress& progress) {
     const TourExportOptions options = TourExportOptions::from_project(snapshot, out);
-    const TourExportReport report = export_tour(snapshot, options, [&progress](double f, const std::string& stage) {
-      progress.report(f, stage);
-      return !progress.cancelled();
-    });
+    const TourExportReport report =
+        export_tour(snapshot, options, [&progress](double f, const std::string& stage) {
+          progress.report(f, stage);
+          return !progress.cancelled();
+        });
     progress.report(1.0, "exported " + std::to_string(report.keyframes) + " keyframes, " +
                              std::to_string(report.package_bytes / 1024) + " KiB");
     return widgets::TaskResult{std::move(snapshot), 0};  // an export changes nothing in the document
@@ -162,7 +161,8 @@ void TrackPathReaction::on_triggered() {
   window_.tasks().start(QObject::tr("Track camera path"), track_path_task());
 }
 
-RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window) : QObject(menu), menu_(menu), window_(window) {
+RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window)
+    : QObject(menu), menu_(menu), window_(window) {
   connect(menu_, &QMenu::aboutToShow, this, &RecentFilesMenu::refill);
   refill();
 }

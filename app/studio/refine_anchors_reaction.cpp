@@ -9,7 +9,8 @@
 
 namespace plenopath::studio {
 
-RefineWithAnchorsReaction::RefineWithAnchorsReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+RefineWithAnchorsReaction::RefineWithAnchorsReaction(QAction* action, MainWindow& window)
+    : Reaction(action, window) {
   connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
   connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
   connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
@@ -23,7 +24,8 @@ void RefineWithAnchorsReaction::update_enabled() {
 
 void RefineWithAnchorsReaction::on_triggered() {
   if (!window_.tasks().start(QObject::tr("Refine path with anchors"), refine_with_anchors_task()))
-    window_.show_error(QObject::tr("Busy"), QObject::tr("Another task is running; wait for it or cancel it first."));
+    window_.show_error(QObject::tr("Busy"),
+                       QObject::tr("Another task is running; wait for it or cancel it first."));
 }
 
 }  // namespace plenopath::studio

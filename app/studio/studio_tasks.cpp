@@ -13,9 +13,9 @@
 
 namespace plenopath::studio {
 
+using widgets::TaskCancelled;
 using widgets::TaskProgress;
 using widgets::TaskResult;
-using widgets::TaskCancelled;
 
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices) {
   return [choices](Project project, TaskProgress& progress) {
@@ -59,7 +59,8 @@ widgets::TaskFunction track_path_task() {
       const int i = f.index;
       if (project.capture.kind == CaptureKind::kVideo)
         f.index = project.capture.first_frame + i * std::max(1, project.capture.stride);
-      if (project.capture.kind == CaptureKind::kImageFolder && i < static_cast<int>(project.capture.frame_names.size()))
+      if (project.capture.kind == CaptureKind::kImageFolder &&
+          i < static_cast<int>(project.capture.frame_names.size()))
         f.file = project.capture.frame_names[i];
     }
     result.path.scale_source = result.scale_source;
@@ -98,18 +99,21 @@ widgets::TaskFunction refine_with_anchors_task() {
     AnchorRefinementReport report;
     progress.report(0.02, "refining " + std::to_string(project.path.size()) + " frames with " +
                               std::to_string(project.anchors.size()) + " anchors");
-    project.path = refine_path_with_anchors(project.path, project.anchors, options, &report, [&](int iteration) {
-      progress.report(std::min(0.99, (iteration + 1.0) / options.max_iterations),
-                      "iteration " + std::to_string(iteration));
-      return !progress.cancelled();
-    }, gps);
+    project.path = refine_path_with_anchors(
+        project.path, project.anchors, options, &report,
+        [&](int iteration) {
+          progress.report(std::min(0.99, (iteration + 1.0) / options.max_iterations),
+                          "iteration " + std::to_string(iteration));
+          return !progress.cancelled();
+        },
+        gps);
     if (report.cancelled) throw TaskCancelled{};
     project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
     double worst = 0.0;
     for (const AnchorResidual& r : report.residuals) worst = std::max(worst, r.distance_m);
     char done[160];
-    std::snprintf(done, sizeof done, "refined in %d iterations; largest anchor residual %.3f m", report.iterations,
-                  worst);
+    std::snprintf(done, sizeof done, "refined in %d iterations; largest anchor residual %.3f m",
+                  report.iterations, worst);
     progress.report(1.0, done);
     unsigned changed = widgets::kPathChanged;
     if (std::optional<VisibilityCells> cells = widgets::cells_following_path(project, project.path)) {

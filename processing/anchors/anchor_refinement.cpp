@@ -47,7 +47,8 @@ struct StepResidual {
     return true;
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector2d& local_step, double turn, double sigma_t, double sigma_r) {
+  static ceres::CostFunction* Create(const Eigen::Vector2d& local_step, double turn, double sigma_t,
+                                     double sigma_r) {
     return new ceres::AutoDiffCostFunction<StepResidual, 3, 3, 3, 2>(
         new StepResidual(local_step, turn, sigma_t, sigma_r));
   }
@@ -208,7 +209,8 @@ void AnchorRefinementOptions::check() const {
 
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                    const AnchorRefinementProgress& progress, const std::vector<GpsPrior>& gps) {
+                                    const AnchorRefinementProgress& progress,
+                                    const std::vector<GpsPrior>& gps) {
   options.check();
   if (path.empty()) throw Error("anchor refinement: the path is empty");
   // GPS fixes on frames the path has; they align the path like anchors when there are no anchors.
@@ -237,9 +239,10 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
 
   ceres::Problem problem;
   problem.AddParameterBlock(drift.data(), 2);
-  problem.AddResidualBlock(DriftPrior::Create(options.drift_scale_sigma, options.drift_bias_sigma_rad), nullptr,
-                           drift.data());
-  if (anchored_frames.size() < 2) problem.SetParameterBlockConstant(drift.data());  // one anchor cannot see drift
+  problem.AddResidualBlock(DriftPrior::Create(options.drift_scale_sigma, options.drift_bias_sigma_rad),
+                           nullptr, drift.data());
+  if (anchored_frames.size() < 2)
+    problem.SetParameterBlockConstant(drift.data());  // one anchor cannot see drift
   for (std::size_t i = 0; i + 1 < start.frames.size(); ++i) {
     const PathFrame& a = start.frames[i];
     const PathFrame& b = start.frames[i + 1];
@@ -247,23 +250,24 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
     const double c = std::cos(a.heading), s = std::sin(a.heading);
     const Eigen::Vector2d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
     const double sigma_t = std::max(options.step_sigma_min_m, options.step_sigma_fraction * d.norm());
-    problem.AddResidualBlock(
-        StepResidual::Create(local, std::remainder(b.heading - a.heading, 2 * M_PI), sigma_t, options.turn_sigma_rad),
-        nullptr, poses[i].data(), poses[i + 1].data(), drift.data());
+    problem.AddResidualBlock(StepResidual::Create(local, std::remainder(b.heading - a.heading, 2 * M_PI),
+                                                  sigma_t, options.turn_sigma_rad),
+                             nullptr, poses[i].data(), poses[i + 1].data(), drift.data());
   }
   for (const Anchor& anchor : anchors) {
     double* pose = poses[position_of(start, anchor.frame)].data();
     problem.AddResidualBlock(AnchorPrior::Create(anchor.position, options.anchor_sigma_m), nullptr, pose);
     if (anchor.heading)
-      problem.AddResidualBlock(HeadingPrior::Create(*anchor.heading, options.anchor_heading_sigma_rad), nullptr, pose);
+      problem.AddResidualBlock(HeadingPrior::Create(*anchor.heading, options.anchor_heading_sigma_rad),
+                               nullptr, pose);
   }
   for (const GpsPrior& g : fixes)
     problem.AddResidualBlock(AnchorPrior::Create(g.plan_xy, g.sigma_m), new ceres::CauchyLoss(1.0),
                              poses[position_of(start, g.frame)].data());
   // A single anchor without heading leaves the rotation about it free: hold that frame's heading.
   if (anchors.size() == 1 && !anchors[0].heading && fixes.size() < 2)
-    problem.AddResidualBlock(HeadingPrior::Create(poses[position_of(start, anchors[0].frame)][2], 1e-3), nullptr,
-                             poses[position_of(start, anchors[0].frame)].data());
+    problem.AddResidualBlock(HeadingPrior::Create(poses[position_of(start, anchors[0].frame)][2], 1e-3),
+                             nullptr, poses[position_of(start, anchors[0].frame)].data());
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain: banded, sparse
@@ -311,7 +315,8 @@ std::vector<GpsPrior> gps_priors_for_path(const Project& project) {
     return {};
   std::vector<double> times;
   for (const PathFrame& f : project.path.frames)
-    times.push_back((project.capture.first_frame + f.index * project.capture.stride) / project.capture.frame_rate);
+    times.push_back((project.capture.first_frame + f.index * project.capture.stride) /
+                    project.capture.frame_rate);
   GpsMatchOptions match;
   match.time_offset_s = project.capture.gps_time_offset_s;
   std::vector<GpsPrior> gps = gps_priors(project.capture.gps_track, times, project.geo, match);

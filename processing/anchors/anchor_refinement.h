@@ -30,21 +30,22 @@ CameraPath align_path_to_anchors(const CameraPath& path, const Anchors& anchors)
 CameraPath preview_path_with_anchors(const CameraPath& path, const Anchors& anchors);
 
 struct AnchorRefinementOptions {
-  double step_sigma_fraction = 0.05;   // std. dev. of a step's recovered translation, as a fraction of its length
-  double step_sigma_min_m = 0.003;     // ... but at least this, metres
-  double turn_sigma_rad = 0.005;       // std. dev. of a step's recovered heading change
-  double anchor_sigma_m = 0.005;       // how tightly an anchored frame sits on its anchor
+  double step_sigma_fraction =
+      0.05;  // std. dev. of a step's recovered translation, as a fraction of its length
+  double step_sigma_min_m = 0.003;  // ... but at least this, metres
+  double turn_sigma_rad = 0.005;    // std. dev. of a step's recovered heading change
+  double anchor_sigma_m = 0.005;    // how tightly an anchored frame sits on its anchor
   double anchor_heading_sigma_rad = 0.01;
   double drift_scale_sigma = 0.2;      // prior on the path's scale error (1 = none)
   double drift_bias_sigma_rad = 0.01;  // prior on the path's heading bias per step
   int max_iterations = 100;
-  void check() const;                  // throws Error naming the bad field
+  void check() const;  // throws Error naming the bad field
 };
 
 struct AnchorResidual {
   int frame = 0;
-  double distance_m = 0.0;        // refined position to anchor
-  double heading_error_deg = 0.0; // when the anchor fixes the heading, else 0
+  double distance_m = 0.0;         // refined position to anchor
+  double heading_error_deg = 0.0;  // when the anchor fixes the heading, else 0
 };
 
 struct AnchorRefinementReport {
@@ -52,7 +53,7 @@ struct AnchorRefinementReport {
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   bool cancelled = false;
-  std::string message;            // Ceres' summary line
+  std::string message;  // Ceres' summary line
 };
 
 // Called once per solver iteration with the iteration number; return false to cancel (the path then

@@ -2,7 +2,8 @@
 // The refinement's residual: the angle between an observed unit bearing (camera frame) and the bearing
 // predicted from a planar pose (x, y, heading; camera at z = 0) and a 3-D point, measured on the sphere
 // (not in equirect pixels, which stretch near the poles).
-// The functor needs no Ceres header (Jets are found by argument-dependent lookup); Create() lives in the .cpp.
+// The functor needs no Ceres header (Jets are found by argument-dependent lookup); Create() lives in the
+// .cpp.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -14,7 +15,8 @@ class CostFunction;
 namespace plenopath {
 
 struct PlanarBearingCost {
-  explicit PlanarBearingCost(const Eigen::Vector3d& observed_bearing) : bearing(observed_bearing.normalized()) {}
+  explicit PlanarBearingCost(const Eigen::Vector3d& observed_bearing)
+      : bearing(observed_bearing.normalized()) {}
 
   // pose = (x, y, heading), point = (X, Y, Z) in the plan frame; residual[3] = predicted unit bearing minus
   // the observed one (the chord: 2 sin(angle / 2), about the angle near the solution, and unlike tangent

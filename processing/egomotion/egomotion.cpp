@@ -71,7 +71,8 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
     if (step.norm() < 1e-9) break;
   }
   int inliers = 0;
-  for (size_t k = 0; k < points.size(); ++k) inliers += ray_error(p, points[k], bearings[k]) < inlier_threshold;
+  for (size_t k = 0; k < points.size(); ++k)
+    inliers += ray_error(p, points[k], bearings[k]) < inlier_threshold;
   *pose = p;
   return inliers;
 }
@@ -79,7 +80,8 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
 // Merges the points of each verified loop pair (union-find; the earlier visit's point stays), rewrites the
 // observations and the track-to-point map, and drops a keyframe's second observation of one merged point.
 // Returns how many points were merged away.
-int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem, std::vector<int>* point_of_track) {
+int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,
+                      std::vector<int>* point_of_track) {
   std::vector<int> parent(problem->points.size());
   for (std::size_t q = 0; q < parent.size(); ++q) parent[q] = static_cast<int>(q);
   auto root = [&](int q) {
@@ -135,7 +137,8 @@ std::string EgomotionOptions::check() const {
   if (scale_distance_m > 0 && (scale_frame_a < 0 || scale_frame_b < 0 || scale_frame_a == scale_frame_b))
     o << "scale_distance_m needs two different frames scale_frame_a and scale_frame_b; ";
   if (!(jump_factor > 1)) o << "jump_factor must be > 1; ";
-  if (!(moving_outlier_fraction > 0 && moving_outlier_fraction <= 1)) o << "moving_outlier_fraction must be in (0, 1]; ";
+  if (!(moving_outlier_fraction > 0 && moving_outlier_fraction <= 1))
+    o << "moving_outlier_fraction must be in (0, 1]; ";
   return o.str();
 }
 
@@ -145,8 +148,8 @@ struct EgomotionTracker::State {
   KltTracker klt;
   std::vector<std::vector<double>> rings;
   std::vector<FrameTrackStats> stats;
-  std::vector<int> live_after;  // live tracks after each frame (texture measure)
-  std::vector<double> window;   // ring column weights
+  std::vector<int> live_after;              // live tracks after each frame (texture measure)
+  std::vector<double> window;               // ring column weights
   std::vector<FrameDescriptors> described;  // for loop closure
   double seconds_frames = 0.0;
 };
@@ -291,7 +294,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       for (int t : frame_tracks[f]) {
         if (!observation(t, f - 1)) continue;
         const Eigen::Vector3d a = bearing(t, f - 1), b = bearing(t, f);
-        azimuth_change.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
+        azimuth_change.push_back(
+            std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
         // A spread subset is plenty for the two-view turn (tracks are in detection order, i.e. spread).
         if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || frame_tracks[f].size() < 480)) {
           ba.push_back(a);
@@ -361,7 +365,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   auto triangulate_track = [&](int t, int up_to_kf) {
     const auto& obs = tracks[t].observations;
     std::vector<Eigen::Vector3d> centres, dirs;
-    const auto first = std::lower_bound(keyframes.begin(), keyframes.begin() + up_to_kf + 1, obs.front().frame);
+    const auto first =
+        std::lower_bound(keyframes.begin(), keyframes.begin() + up_to_kf + 1, obs.front().frame);
     for (auto it = first; it != keyframes.begin() + up_to_kf + 1 && *it <= obs.back().frame; ++it) {
       const int k = static_cast<int>(it - keyframes.begin());
       centres.emplace_back(kf_pose[k].x(), kf_pose[k].y(), 0.0);
@@ -388,7 +393,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
     const double bridge_length = (last_speed > 0 ? last_speed : 1.0 / gap) * gap;  // frame 0 -> 1: unit
     PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
     // The tracked turn is good to a fraction of a degree: a two-view turn far from it is a wrong solution.
-    if (rel.valid && std::abs(rel.turn - turn_guess) > opt.max_step_turn_disagreement_deg * deg) rel.valid = false;
+    if (rel.valid && std::abs(rel.turn - turn_guess) > opt.max_step_turn_disagreement_deg * deg)
+      rel.valid = false;
     Eigen::Vector3d& pa = kf_pose[k - 1];
     Eigen::Vector3d& pb = kf_pose[k];
     pb.z() = pa.z() + (rel.valid ? rel.turn : turn_guess);
@@ -503,14 +509,16 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   {
     std::vector<double> kf_travelled(kfn, 0.0);
     for (int k = 1; k < kfn; ++k)
-      kf_travelled[k] = kf_travelled[k - 1] + (problem.poses[k].head<2>() - problem.poses[k - 1].head<2>()).norm();
+      kf_travelled[k] =
+          kf_travelled[k - 1] + (problem.poses[k].head<2>() - problem.poses[k - 1].head<2>()).norm();
     std::vector<double> steps;
     for (int k = 1; k < kfn; ++k) steps.push_back(kf_travelled[k] - kf_travelled[k - 1]);
     const std::vector<Eigen::Vector3d> kf_now = problem.poses;
     const std::vector<LoopMatch> loops = find_loop_closures(
         s.described, [&](int f) { return interpolate(kf_now, f); },
         [&](int f) {
-          const int k1 = static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
+          const int k1 =
+              static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
           if (k1 >= kfn) return kf_travelled.back();
           const int k0 = k1 - 1;
           const double w = double(f - keyframes[k0]) / (keyframes[k1] - keyframes[k0]);
@@ -532,7 +540,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
 
   // ---- every frame against the refined points
   std::vector<double> kf_steps;
-  for (int k = 1; k < kfn; ++k) kf_steps.push_back((refined_kf[k].head<2>() - refined_kf[k - 1].head<2>()).norm());
+  for (int k = 1; k < kfn; ++k)
+    kf_steps.push_back((refined_kf[k].head<2>() - refined_kf[k - 1].head<2>()).norm());
   const double typical_kf_step = median(kf_steps);  // turns on the spot have none: bounds need a floor
   // Points the refinement dropped (every observation an outlier) keep their coarse positions: resecting
   // against them pulls a frame towards the coarse chain.
@@ -556,12 +565,15 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       const int inliers = resect_pose(&p, pts, brs, refinement.loss_scale, inlier_threshold);
       // The frame lies between its keyframes: a resection that lands farther from the interpolated pose
       // than the keyframe step (or turns more than the tracked turn allows) has slipped.
-      const int k1 = static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
+      const int k1 =
+          static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
       const int k0 = std::max(0, k1 - 1);
-      const double kf_step = k1 < kfn ? (refined_kf[k1].head<2>() - refined_kf[k0].head<2>()).norm()
-                                      : (k0 > 0 ? (refined_kf[k0].head<2>() - refined_kf[k0 - 1].head<2>()).norm() : 0.0);
-      const bool slipped = (p.head<2>() - pose[f].head<2>()).norm() > std::max(kf_step, 0.5 * typical_kf_step) ||
-                           std::abs(p.z() - pose[f].z()) > opt.max_step_turn_disagreement_deg * deg;
+      const double kf_step =
+          k1 < kfn ? (refined_kf[k1].head<2>() - refined_kf[k0].head<2>()).norm()
+                   : (k0 > 0 ? (refined_kf[k0].head<2>() - refined_kf[k0 - 1].head<2>()).norm() : 0.0);
+      const bool slipped =
+          (p.head<2>() - pose[f].head<2>()).norm() > std::max(kf_step, 0.5 * typical_kf_step) ||
+          std::abs(p.z() - pose[f].z()) > opt.max_step_turn_disagreement_deg * deg;
       if (slipped) {
         add_flag(frames[f], kFrameBridged, "bridged: the frame's points place it away from its keyframes");
       } else if (inliers >= opt.resection_min_points) {
@@ -609,7 +621,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       for (double z : steep) ++bins[static_cast<int>(std::floor(std::log(z) / 0.02))];
       int best_bin = 0, best_count = -1;
       for (const auto& [bin, count] : bins) {
-        const int c = count + (bins.count(bin - 1) ? bins[bin - 1] : 0) + (bins.count(bin + 1) ? bins[bin + 1] : 0);
+        const int c =
+            count + (bins.count(bin - 1) ? bins[bin - 1] : 0) + (bins.count(bin + 1) ? bins[bin + 1] : 0);
         if (c > best_count) {
           best_count = c;
           best_bin = bin;
@@ -627,7 +640,8 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
       }
     }
   }
-  if (result.scale_source == "relative" && opt.scale_distance_m > 0 && opt.scale_frame_a < n && opt.scale_frame_b < n) {
+  if (result.scale_source == "relative" && opt.scale_distance_m > 0 && opt.scale_frame_a < n &&
+      opt.scale_frame_b < n) {
     const double d = (pose[opt.scale_frame_a].head<2>() - pose[opt.scale_frame_b].head<2>()).norm();
     if (d > 0) {
       scale = opt.scale_distance_m / d;
@@ -686,7 +700,8 @@ EgomotionResult EgomotionTracker::run(int frame_count, const std::function<cv::M
   for (int i = 0; i < frame_count; ++i) {
     const cv::Mat frame = read(i);
     tracker.add_frame(frame);
-    if (callback && (i % 8 == 0 || i == frame_count - 1) && !callback("frames", double(i + 1) / frame_count)) {
+    if (callback && (i % 8 == 0 || i == frame_count - 1) &&
+        !callback("frames", double(i + 1) / frame_count)) {
       EgomotionResult r;
       r.cancelled = true;
       return r;

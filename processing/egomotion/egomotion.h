@@ -35,50 +35,50 @@ struct EgomotionOptions {
   KltOptions klt;
   PlanarTwoViewOptions two_view;
   RefinementOptions refinement;
-  LoopClosureOptions loop;              // between the windowed and the global refinement
-  double keyframe_parallax_deg = 2.0;   // median rotation-free parallax since the last keyframe that makes one
-  double keyframe_max_turn_deg = 8.0;   // heading change since the last keyframe that cuts a chunk
-  double keyframe_min_shared = 0.5;     // fraction of the last keyframe's tracks still seen; below it, cut
+  LoopClosureOptions loop;             // between the windowed and the global refinement
+  double keyframe_parallax_deg = 2.0;  // median rotation-free parallax since the last keyframe that makes one
+  double keyframe_max_turn_deg = 8.0;  // heading change since the last keyframe that cuts a chunk
+  double keyframe_min_shared = 0.5;    // fraction of the last keyframe's tracks still seen; below it, cut
   // A two-view turn (consecutive frames, or keyframes) this far from the turn the tracks' azimuths suggest
   // is taken for a wrong solution.
   double max_step_turn_disagreement_deg = 3.0;
-  double max_step_ratio = 5.0;          // a keyframe step this many times above or below the recent median is bridged
-  double min_triangulation_deg = 1.0;   // rays of a point must span at least this angle
-  double max_initial_error_deg = 1.0;   // observations this far off after initialisation are dropped
-  int min_point_keyframes = 3;          // a point enters the refinement when seen from this many keyframes
-  int resection_min_points = 12;        // fewer points seen: the frame's pose is bridged (interpolated)
+  double max_step_ratio = 5.0;  // a keyframe step this many times above or below the recent median is bridged
+  double min_triangulation_deg = 1.0;  // rays of a point must span at least this angle
+  double max_initial_error_deg = 1.0;  // observations this far off after initialisation are dropped
+  int min_point_keyframes = 3;         // a point enters the refinement when seen from this many keyframes
+  int resection_min_points = 12;       // fewer points seen: the frame's pose is bridged (interpolated)
   // Metric scale, in order of preference: the camera's height above the floor, or a distance between two
   // frames the author knows. Neither: relative scale (first keyframe step = 1).
   double camera_height_m = 0.0;
   int scale_frame_a = -1, scale_frame_b = -1;
   double scale_distance_m = 0.0;
   // Flags.
-  int textureless_corners = 60;         // fewer live corners than this: textureless
-  double duplicate_flow_px = 0.08;      // median track motion below this (and no turn): duplicate / stopped
-  double jump_factor = 6.0;             // a step this many times the local median step: jump
+  int textureless_corners = 60;     // fewer live corners than this: textureless
+  double duplicate_flow_px = 0.08;  // median track motion below this (and no turn): duplicate / stopped
+  double jump_factor = 6.0;         // a step this many times the local median step: jump
   // Above this share of a frame's tracks moving against the static scene (off the step's epipolar geometry):
   // moving objects. Clean renders stay below 0.003 at the 99th percentile (0.10 at worst, in 7 deg/frame
   // turns); 25 people walking about the office reach 0.09.
   double moving_outlier_fraction = 0.15;
   std::uint32_t seed = 1;
-  std::string check() const;            // empty when valid
+  std::string check() const;  // empty when valid
 };
 
 struct EgomotionResult {
-  CameraPath path;                     // one pose per frame, headings radians; frame 0 at (0, 0), heading 0
-  std::vector<double> ring_headings;   // step 1's headings per frame (radians, frame 0 = 0)
+  CameraPath path;                       // one pose per frame, headings radians; frame 0 at (0, 0), heading 0
+  std::vector<double> ring_headings;     // step 1's headings per frame (radians, frame 0 = 0)
   std::vector<double> tracked_headings;  // frame-to-frame turns from the KLT tracks, chained (radians)
   std::vector<Eigen::Vector3d> coarse_poses;  // step 2's (x, y, heading) per frame, final scale
-  std::vector<int> keyframes;          // frame indices
+  std::vector<int> keyframes;                 // frame indices
   int points = 0;
   int observations = 0;
   RefinementReport refinement;
-  int loop_closures = 0;               // places recognised as revisited (frame pairs)
+  int loop_closures = 0;                         // places recognised as revisited (frame pairs)
   std::vector<std::pair<int, int>> loop_frames;  // those pairs: (earlier frame, later frame)
-  int merged_points = 0;               // points tied to an earlier visit's by them
-  std::string scale_source;            // "camera_height", "distance", or "relative"
-  double scale_factor = 1.0;           // metres per internal unit applied at the end
-  int floor_points = 0;                // points used for the camera-height scale
+  int merged_points = 0;                         // points tied to an earlier visit's by them
+  std::string scale_source;                      // "camera_height", "distance", or "relative"
+  double scale_factor = 1.0;                     // metres per internal unit applied at the end
+  int floor_points = 0;                          // points used for the camera-height scale
   int flagged_frames = 0;
   bool cancelled = false;
   double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)

@@ -14,7 +14,8 @@
 
 namespace plenopath {
 namespace {
-// How far a warp's linear part is from the identity: the largest relative change of a length, or the rotation.
+// How far a warp's linear part is from the identity: the largest relative change of a length, or the
+// rotation.
 double deformation(const cv::Matx22d& a) {
   const LinearStretch s = linear_stretch(a);
   return std::max({std::abs(s.largest - 1.0), std::abs(s.smallest - 1.0), std::abs(s.rotation)});
@@ -35,7 +36,8 @@ std::string KltOptions::check() const {
   if (affine_refinement && !affine.check().empty()) o << "affine: " << affine.check();
   if (!(max_affine_correction_px > 0)) o << "max_affine_correction_px must be > 0; ";
   if (!(affine_refresh_deformation > 0)) o << "affine_refresh_deformation must be > 0; ";
-  if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90)) o << "max_abs_elevation_deg must be in (10, 90]; ";
+  if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90))
+    o << "max_abs_elevation_deg must be in (10, 90]; ";
   return o.str();
 }
 
@@ -105,8 +107,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
     const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
     to = from;
     for (cv::Point2f& p : to) p.x += static_cast<float>(predicted_shift_px);
-    cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, error, window, options_.pyramid_levels,
-                             term, cv::OPTFLOW_USE_INITIAL_FLOW);
+    cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, error, window,
+                             options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
     bool check_back = options_.forward_backward_px > 0;
     if (check_back) {
       back = from;
@@ -122,7 +124,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       bool ok = status[k] != 0;
       if (ok && check_back) {
         const float dx = back[k].x - from[k].x, dy = back[k].y - from[k].y;
-        ok = status_back[k] != 0 && dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
+        ok = status_back[k] != 0 &&
+             dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
       }
       const float y = to[k].y - pad_;
       if (ok && (y < y_min || y > y_max)) ok = false;

@@ -14,12 +14,12 @@
 namespace plenopath {
 
 struct KltOptions {
-  int work_width = 1024;          // frames are resized to this width for tracking (0 = keep the frame's)
-  int max_features = 700;         // corners kept alive at most
-  int min_features = 450;         // below this many live tracks, new corners are detected
-  double quality_level = 0.003;   // goodFeaturesToTrack quality (relative to the best corner)
-  int min_distance_px = 10;       // between corners, working pixels
-  int window_px = 21;             // Lucas-Kanade window
+  int work_width = 1024;         // frames are resized to this width for tracking (0 = keep the frame's)
+  int max_features = 700;        // corners kept alive at most
+  int min_features = 450;        // below this many live tracks, new corners are detected
+  double quality_level = 0.003;  // goodFeaturesToTrack quality (relative to the best corner)
+  int min_distance_px = 10;      // between corners, working pixels
+  int window_px = 21;            // Lucas-Kanade window
   int pyramid_levels = 3;
   double max_abs_elevation_deg = 72.0;  // corners nearer the poles are not used (stretched, few)
   double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
@@ -43,7 +43,7 @@ struct KltOptions {
   AffinePatchOptions affine;
   double max_affine_correction_px = 1.5;
   double affine_refresh_deformation = 0.15;
-  std::string check() const;      // empty when valid
+  std::string check() const;  // empty when valid
 };
 
 struct TrackObservation {
@@ -85,10 +85,10 @@ class KltTracker {
   int width_ = 0, height_ = 0, pad_ = 0;
   int frame_count_ = 0;
   std::vector<FeatureTrack> tracks_;
-  std::vector<int> live_;  // indices of tracks observed in the last frame
+  std::vector<int> live_;          // indices of tracks observed in the last frame
   std::vector<int> moved_frames_;  // per track: frames since its start in which the camera moved
   struct LivePatch {
-    AffinePatch patch;            // as the track first saw it
+    AffinePatch patch;                        // as the track first saw it
     cv::Matx22d linear = cv::Matx22d::eye();  // its deformation up to the last frame
   };
   std::vector<LivePatch> live_patches_;  // parallel to live_ (when affine_refinement)

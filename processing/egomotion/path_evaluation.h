@@ -25,11 +25,11 @@ struct PathErrors {
   int frames_matched = 0;
   double rot_rms_deg = 0.0;  // heading error after removing the aligning rotation
   double rot_max_deg = 0.0;
-  double ate_rms_m = 0.0;    // position error after the similarity alignment, in the truth's metres
+  double ate_rms_m = 0.0;  // position error after the similarity alignment, in the truth's metres
   double ate_max_m = 0.0;
-  double ate_pct = 0.0;      // ate_rms_m as a percentage of the truth's path length
+  double ate_pct = 0.0;  // ate_rms_m as a percentage of the truth's path length
   double truth_length_m = 0.0;
-  double scale = 1.0;        // the aligning scale: 1 + the estimate's relative scale error
+  double scale = 1.0;            // the aligning scale: 1 + the estimate's relative scale error
   double scale_error_pct = 0.0;  // |1/scale - 1| * 100: how far the estimate's own metres are off
 };
 

@@ -165,7 +165,8 @@ void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, 
 std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& observations, std::size_t points,
                                        std::size_t limit) {
   std::vector<std::vector<int>> by_point(points);
-  for (std::size_t k = 0; k < observations.size(); ++k) by_point[observations[k].point].push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < observations.size(); ++k)
+    by_point[observations[k].point].push_back(static_cast<int>(k));
   std::size_t seen = 0;
   for (const auto& v : by_point) seen += !v.empty();
   const std::size_t keep = std::max<std::size_t>(3, seen > 0 ? limit / seen : 3);
@@ -178,7 +179,8 @@ std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& obs
       continue;
     }
     for (std::size_t j = 0; j < keep; ++j)
-      out.push_back(observations[v[static_cast<std::size_t>(std::lround(double(j) * (v.size() - 1) / (keep - 1)))]]);
+      out.push_back(
+          observations[v[static_cast<std::size_t>(std::lround(double(j) * (v.size() - 1) / (keep - 1)))]]);
   }
   return out;
 }
@@ -188,7 +190,8 @@ std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& obs
 std::string RefinementOptions::check() const {
   std::ostringstream o;
   if (!(loss_scale > 0)) o << "loss_scale must be > 0; ";
-  if (window_keyframes < 0 || (window_keyframes > 0 && window_keyframes < 4)) o << "window_keyframes must be 0 or >= 4; ";
+  if (window_keyframes < 0 || (window_keyframes > 0 && window_keyframes < 4))
+    o << "window_keyframes must be 0 or >= 4; ";
   if (window_overlap < 2 || (window_keyframes > 0 && window_overlap >= window_keyframes))
     o << "window_overlap must be >= 2 and below window_keyframes; ";
   if (window_max_iterations < 0 || global_max_iterations < 0) o << "iteration limits must be >= 0; ";
@@ -205,8 +208,8 @@ std::vector<double> observation_errors(const BundleProblem& p) {
     const Eigen::Vector3d& q = p.points[o.point];
     const Eigen::Vector3d& c = p.poses[o.pose];
     const double ch = std::cos(c.z()), sh = std::sin(c.z());
-    const Eigen::Vector3d d(ch * (q.x() - c.x()) + sh * (q.y() - c.y()), -sh * (q.x() - c.x()) + ch * (q.y() - c.y()),
-                            q.z());
+    const Eigen::Vector3d d(ch * (q.x() - c.x()) + sh * (q.y() - c.y()),
+                            -sh * (q.x() - c.x()) + ch * (q.y() - c.y()), q.z());
     const double angle = std::atan2(d.cross(o.bearing).norm(), d.dot(o.bearing));
     e.push_back(std::isfinite(angle) ? angle : M_PI);
   }
@@ -239,8 +242,8 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       const double begin = windowed_share * w / windows, end = windowed_share * (w + 1) / windows;
       ++report.windows;
       const Eigen::Vector3d last_before = problem.poses[last];
-      if (!solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress, begin, end,
-                       &report)) {
+      if (!solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress,
+                       begin, end, &report)) {
         report.cancelled = true;
         report.final_rms = rms(observation_errors(problem));
         return report;

@@ -23,9 +23,9 @@ struct BundleProblem {
 };
 
 struct RefinementOptions {
-  double loss_scale = 0.003;       // Cauchy loss scale, radians (about half a pixel at 1024 wide)
-  int window_keyframes = 80;       // keyframes per window in the windowed pass (0 = no windowed pass)
-  int window_overlap = 20;         // keyframes shared by consecutive windows (held in the later one)
+  double loss_scale = 0.003;  // Cauchy loss scale, radians (about half a pixel at 1024 wide)
+  int window_keyframes = 80;  // keyframes per window in the windowed pass (0 = no windowed pass)
+  int window_overlap = 20;    // keyframes shared by consecutive windows (held in the later one)
   int window_max_iterations = 15;
   int global_max_iterations = 20;  // 0 = skip the global pass (the windowed pass has done most of the work)
   // Memory: Ceres keeps about a kilobyte per observation. Above this many, the global pass sees each point
@@ -44,7 +44,7 @@ struct RefinementOptions {
   // per thread in whatever order the threads finish, the last bits differ run to run, and those differences
   // grow through the outlier pass and the resection's inlier decisions (0.19 deg vs 1.42 deg seen).
   int threads = 1;
-  std::string check() const;       // empty when valid
+  std::string check() const;  // empty when valid
 };
 
 struct RefinementReport {

@@ -24,7 +24,8 @@ bool in_front(const Eigen::Vector3d& a, const Eigen::Vector3d& rb, const Eigen::
 
 }  // namespace
 
-double planar_epipolar_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double turn, double direction) {
+double planar_epipolar_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double turn,
+                             double direction) {
   const Eigen::Vector3d t(std::cos(direction), std::sin(direction), 0.0);
   const Eigen::Vector3d n = t.cross(a);
   const double nn = n.norm();
@@ -139,8 +140,9 @@ PlanarRelativePose estimate_planar_relative_pose(const std::vector<Eigen::Vector
   return out;
 }
 
-bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres, const std::vector<Eigen::Vector3d>& directions,
-                      double min_angle, Eigen::Vector3d* point) {
+bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres,
+                      const std::vector<Eigen::Vector3d>& directions, double min_angle,
+                      Eigen::Vector3d* point) {
   const size_t n = centres.size();
   if (n < 2) return false;
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();

@@ -20,11 +20,11 @@ struct PlanarRelativePose {
 };
 
 struct PlanarTwoViewOptions {
-  double threshold = 0.004;   // epipolar inlier threshold, radians (about 0.7 px at 1024 wide)
-  int iterations = 64;        // RANSAC hypotheses
+  double threshold = 0.004;  // epipolar inlier threshold, radians (about 0.7 px at 1024 wide)
+  int iterations = 64;       // RANSAC hypotheses
   int min_inliers = 12;
   double min_parallax = 0.002;  // radians; below this the direction is not observable
-  int turn_scan_deg = 25;       // when the turn guess explains under half the matches, turns within this are tried
+  int turn_scan_deg = 25;  // when the turn guess explains under half the matches, turns within this are tried
 };
 
 // a[k] seen by camera A, b[k] by camera B (camera frames, unit). A sits at the origin with heading 0.
@@ -33,12 +33,14 @@ PlanarRelativePose estimate_planar_relative_pose(const std::vector<Eigen::Vector
                                                  const PlanarTwoViewOptions& options, std::mt19937& rng);
 
 // Epipolar residual (sine of the angle between b's ray and the epipolar plane) of one correspondence.
-double planar_epipolar_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double turn, double direction);
+double planar_epipolar_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double turn,
+                             double direction);
 
 // Midpoint triangulation from rays (centres and unit world directions). Returns false when the rays are
 // nearly parallel (max pairwise angle below min_angle), the centres subtend less than min_angle seen from
 // the point, or the point is behind a camera.
-bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres, const std::vector<Eigen::Vector3d>& directions,
-                      double min_angle, Eigen::Vector3d* point);
+bool triangulate_rays(const std::vector<Eigen::Vector3d>& centres,
+                      const std::vector<Eigen::Vector3d>& directions, double min_angle,
+                      Eigen::Vector3d* point);
 
 }  // namespace plenopath

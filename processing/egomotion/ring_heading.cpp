@@ -184,9 +184,10 @@ std::vector<double> axis_window(int width, double axis_floor, double shift_px) {
 }
 
 RingShift circular_phase_correlation(const std::vector<double>& a, const std::vector<double>& b,
-                                     double center_px, double max_shift_px, const std::vector<double>* window_a,
-                                     double max_frequency_fraction) {
-  if (a.size() != b.size() || a.size() < 8) throw Error("phase correlation: rings differ in length or are too short");
+                                     double center_px, double max_shift_px,
+                                     const std::vector<double>* window_a, double max_frequency_fraction) {
+  if (a.size() != b.size() || a.size() < 8)
+    throw Error("phase correlation: rings differ in length or are too short");
   const int n = static_cast<int>(a.size());
   max_shift_px = std::min(max_shift_px, n / 2.0);
   std::vector<double> ones(n, 1.0);

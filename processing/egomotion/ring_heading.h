@@ -19,9 +19,9 @@ struct RingOptions {
   // Spectral taper: frequencies above this fraction of Nyquist are faded out (whitened high frequencies
   // are mostly noise and aliasing).
   double max_frequency_fraction = 0.5;
-  double max_turn_deg_per_frame = 18.0;  // bounds the peak search (a trolley does not spin faster)
+  double max_turn_deg_per_frame = 18.0;           // bounds the peak search (a trolley does not spin faster)
   std::vector<int> frame_offsets = {1, 2, 4, 8};  // each frame is registered against these earlier frames
-  double min_peak = 0.05;  // weaker correlation peaks are treated as failures
+  double min_peak = 0.05;                         // weaker correlation peaks are treated as failures
 
   // Empty when valid, otherwise what is wrong.
   std::string check() const;
@@ -37,11 +37,13 @@ struct RingShift {
 };
 
 // Circular phase correlation on the exact length (no padding), peak searched within
-// |shift - center_px| <= max_shift_px and refined to sub-pixel by Newton steps on the band-limited (trigonometric) interpolation of the
-// correlation. `window_a` (optional, same length) weights the columns of `a`; the window for `b` follows
-// it through the estimated shift so that the window itself does not pull the peak towards zero.
+// |shift - center_px| <= max_shift_px and refined to sub-pixel by Newton steps on the band-limited
+// (trigonometric) interpolation of the correlation. `window_a` (optional, same length) weights the columns of
+// `a`; the window for `b` follows it through the estimated shift so that the window itself does not pull the
+// peak towards zero.
 RingShift circular_phase_correlation(const std::vector<double>& a, const std::vector<double>& b,
-                                     double center_px, double max_shift_px, const std::vector<double>* window_a = nullptr,
+                                     double center_px, double max_shift_px,
+                                     const std::vector<double>* window_a = nullptr,
                                      double max_frequency_fraction = 0.5);
 
 // Column weights of RingOptions::axis_floor for a ring of `width` columns, evaluated at column positions

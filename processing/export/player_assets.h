@@ -6,7 +6,7 @@
 namespace plenopath {
 
 struct EmbeddedFile {
-  const char* name;            // file name inside resources/player/
+  const char* name;  // file name inside resources/player/
   const unsigned char* data;
   std::size_t size;
 };

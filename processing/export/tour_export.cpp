@@ -125,7 +125,8 @@ std::string mime_type(const std::string& name) {
 }
 
 // A script that hands the asset to the player as a data URI (file:// pages cannot texture from files).
-std::string asset_script(const std::string& name, const std::string& mime, const std::vector<unsigned char>& bytes) {
+std::string asset_script(const std::string& name, const std::string& mime,
+                         const std::vector<unsigned char>& bytes) {
   return "plenopathAsset(\"" + name + "\",\"data:" + mime + ";base64," + base64(bytes) + "\");\n";
 }
 
@@ -142,7 +143,8 @@ std::vector<unsigned char> encode_jpeg(const cv::Mat& image, int width, int qual
   else
     resized = image;
   std::vector<unsigned char> bytes;
-  if (!cv::imencode(".jpg", resized, bytes, {cv::IMWRITE_JPEG_QUALITY, quality, cv::IMWRITE_JPEG_PROGRESSIVE, 1}))
+  if (!cv::imencode(".jpg", resized, bytes,
+                    {cv::IMWRITE_JPEG_QUALITY, quality, cv::IMWRITE_JPEG_PROGRESSIVE, 1}))
     throw Error("JPEG encoding failed");
   return bytes;
 }
@@ -177,11 +179,20 @@ std::string plan_svg(const FloorPlan& plan) {
     std::string out;
     for (char c : text) {
       switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
+        case '&':
+          out += "&amp;";
+          break;
+        case '<':
+          out += "&lt;";
+          break;
+        case '>':
+          out += "&gt;";
+          break;
+        case '"':
+          out += "&quot;";
+          break;
+        default:
+          out += c;
       }
     }
     return out;
@@ -223,8 +234,8 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
 
   TourExportReport report;
   report.output = options.output;
-  report.capture_frames = project.capture.frame_count > 0 ? project.capture.frame_count
-                                                          : static_cast<int>(project.path.size());
+  report.capture_frames =
+      project.capture.frame_count > 0 ? project.capture.frame_count : static_cast<int>(project.path.size());
   PackageWriter package;
 
   // Keyframe images, in progressive order so that a streaming reader gets the coarse tour first.
@@ -277,8 +288,9 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
       const std::string name = media_name(h.id, suffix, source);
       const std::string data = read_binary_file(source);
       if (options.offline_images)
-        package.add(name.substr(0, name.rfind('.')) + ".js",
-                    asset_script(name, mime_type(name), std::vector<unsigned char>(data.begin(), data.end())));
+        package.add(
+            name.substr(0, name.rfind('.')) + ".js",
+            asset_script(name, mime_type(name), std::vector<unsigned char>(data.begin(), data.end())));
       package.add(name, data);
       return name;
     };
@@ -291,12 +303,19 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   const nlohmann::json tour = make_tour_json(project, images, media, full_width, preview_width);
   package.add("tour.json", tour.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   // The same data as a script: browsers refuse fetch() of file:// URLs, but load scripts.
-  package.add("tour.js", "window.PLENOPATH_TOUR = " + tour.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + ";\n");
+  package.add("tour.js", "window.PLENOPATH_TOUR = " +
+                             tour.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + ";\n");
   package.add("plan.svg", plan_svg(project.plan));
   for (const EmbeddedFile& f : player_assets())
     package.add(f.name, std::string(reinterpret_cast<const char*>(f.data), f.size));
-  if (options.pannellum) package.add("pannellum.json", pannellum_config(project, images).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  if (options.geojson) package.add("path.geojson", path_geojson(project).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  if (options.pannellum)
+    package.add(
+        "pannellum.json",
+        pannellum_config(project, images).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+            "\n");
+  if (options.geojson)
+    package.add("path.geojson",
+                path_geojson(project).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 
   report_progress(0.95, "writing package");
   for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);

@@ -16,16 +16,16 @@ constexpr int kTourFormatVersion = 1;
 constexpr const char* kTourFormatName = "plenopath-tour";
 
 struct TourExportOptions {
-  std::string output;             // a folder, or a file whose name ends in .zip
-  int max_size = 4096;            // full keyframe width cap, pixels (never upscaled)
-  int preview_size = 1024;        // preview keyframe width, pixels (loads first)
-  int jpeg_quality = 85;          // 1..100
-  bool pannellum = false;         // also write pannellum.json (one scene per keyframe, linked along the path)
-  bool geojson = false;           // also write path.geojson in WGS84 (needs a valid geo-anchor)
+  std::string output;       // a folder, or a file whose name ends in .zip
+  int max_size = 4096;      // full keyframe width cap, pixels (never upscaled)
+  int preview_size = 1024;  // preview keyframe width, pixels (loads first)
+  int jpeg_quality = 85;    // 1..100
+  bool pannellum = false;   // also write pannellum.json (one scene per keyframe, linked along the path)
+  bool geojson = false;     // also write path.geojson in WGS84 (needs a valid geo-anchor)
   // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
   // script holding it as a data URI. Off only for packages that will always be served over http.
   bool offline_images = true;
-  void check() const;             // throws Error naming the bad field
+  void check() const;  // throws Error naming the bad field
   static TourExportOptions from_project(const Project& project, const std::string& output);
 };
 
@@ -33,9 +33,9 @@ struct TourExportReport {
   std::string output;
   int keyframes = 0;
   int capture_frames = 0;
-  std::uintmax_t package_bytes = 0;      // total size of the folder's files, or of the .zip
-  std::vector<std::string> files;        // package-relative paths written
-  std::vector<std::string> warnings;     // e.g. missing hotspot media
+  std::uintmax_t package_bytes = 0;   // total size of the folder's files, or of the .zip
+  std::vector<std::string> files;     // package-relative paths written
+  std::vector<std::string> warnings;  // e.g. missing hotspot media
 };
 
 // Called with the fraction done and a short stage name; return false to cancel (export_tour then throws

@@ -75,16 +75,20 @@ nlohmann::json path_geojson(const Project& project) {
   json features = json::array();
   features.push_back({{"type", "Feature"},
                       {"geometry", {{"type", "LineString"}, {"coordinates", line}}},
-                      {"properties", {{"name", project.tour.title}, {"kind", "path"},
-                                      {"frames", project.path.size()}, {"length_m", project.path.length()}}}});
+                      {"properties",
+                       {{"name", project.tour.title},
+                        {"kind", "path"},
+                        {"frames", project.path.size()},
+                        {"length_m", project.path.length()}}}});
   const std::vector<int> order = project.keyframes.progressive_order();
   for (std::size_t r = 0; r < order.size(); ++r) {
     const PathFrame* f = project.path.find_frame(order[r]);
     if (!f) continue;
-    features.push_back({{"type", "Feature"},
-                        {"geometry", {{"type", "Point"}, {"coordinates", lon_lat(f->x, f->y)}}},
-                        {"properties", {{"kind", "keyframe"}, {"frame", f->index}, {"rank", r},
-                                        {"heading_deg", degrees(f->heading)}}}});
+    features.push_back(
+        {{"type", "Feature"},
+         {"geometry", {{"type", "Point"}, {"coordinates", lon_lat(f->x, f->y)}}},
+         {"properties",
+          {{"kind", "keyframe"}, {"frame", f->index}, {"rank", r}, {"heading_deg", degrees(f->heading)}}}});
   }
   return {{"type", "FeatureCollection"}, {"features", features}};
 }

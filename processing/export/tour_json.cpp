@@ -14,8 +14,9 @@ namespace {
 using nlohmann::json;
 
 json cell_json(const VisibilityCell& c) {
-  return {{"first_frame", c.first_frame}, {"last_frame", c.last_frame}, {"s_begin", c.s_begin},
-          {"s_end", c.s_end},             {"length", c.length},         {"area_mid", c.area_mid},
+  return {{"first_frame", c.first_frame}, {"last_frame", c.last_frame},
+          {"s_begin", c.s_begin},         {"s_end", c.s_end},
+          {"length", c.length},           {"area_mid", c.area_mid},
           {"area_mean", c.area_mean}};
 }
 
@@ -44,8 +45,13 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
     if (it == position_of_frame.end())
       throw Error("keyframe " + std::to_string(img.frame) + " has no pose in the path");
     const PathFrame& f = path.frames[it->second];
-    json k = {{"frame", f.index},         {"rank", rank_of_frame.at(f.index)}, {"x", f.x}, {"y", f.y},
-              {"heading_deg", degrees(f.heading)}, {"s", s[it->second]},   {"preview", img.preview},
+    json k = {{"frame", f.index},
+              {"rank", rank_of_frame.at(f.index)},
+              {"x", f.x},
+              {"y", f.y},
+              {"heading_deg", degrees(f.heading)},
+              {"s", s[it->second]},
+              {"preview", img.preview},
               {"full", img.full}};
     if (!img.preview_script.empty()) k["preview_script"] = img.preview_script;
     if (!img.full_script.empty()) k["full_script"] = img.full_script;
@@ -60,7 +66,8 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
   std::map<std::string, int> layer_index;
   for (const PlanLayer& l : plan.layers) {
     layer_index[l.name] = static_cast<int>(layers.size());
-    layers.push_back({{"name", l.name}, {"color", l.color}, {"occluder", l.occluder}, {"visible", l.visible}});
+    layers.push_back(
+        {{"name", l.name}, {"color", l.color}, {"occluder", l.occluder}, {"visible", l.visible}});
   }
   for (const PlanSegment& seg : plan.segments) {
     if (!layer_index.count(seg.layer)) {  // segments on a layer the plan does not list still get one
@@ -72,7 +79,8 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
   for (const PlanLabel& l : plan.labels)
     labels.push_back({{"x", l.position.x()}, {"y", l.position.y()}, {"text", l.text}, {"height", l.height}});
   const PlanExtents e = plan.extents();
-  json extents = e.valid ? json{{"min", {e.min.x(), e.min.y()}}, {"max", {e.max.x(), e.max.y()}}} : json(nullptr);
+  json extents =
+      e.valid ? json{{"min", {e.min.x(), e.min.y()}}, {"max", {e.max.x(), e.max.y()}}} : json(nullptr);
 
   std::map<std::string, const HotspotMediaFile*> media_of;
   for (const HotspotMediaFile& m : media) media_of[m.id] = &m;
@@ -89,8 +97,11 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
   json geo = nullptr;
   if (project.geo.valid) {
     const GeoAnchor& g = project.geo;
-    geo = {{"latitude_deg", g.latitude_deg}, {"longitude_deg", g.longitude_deg}, {"altitude_m", g.altitude_m},
-           {"plan_rotation_deg", degrees(g.plan_rotation)}, {"scale", g.scale},
+    geo = {{"latitude_deg", g.latitude_deg},
+           {"longitude_deg", g.longitude_deg},
+           {"altitude_m", g.altitude_m},
+           {"plan_rotation_deg", degrees(g.plan_rotation)},
+           {"scale", g.scale},
            {"plan_origin", {g.plan_origin.x(), g.plan_origin.y()}}};
   }
 
@@ -99,21 +110,27 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
     start_frame = project.keyframes.indices.empty() ? (path.empty() ? 0 : path.frames.front().index)
                                                     : project.keyframes.indices.front();
 
-  return {{"format", kTourFormatName},
-          {"version", kTourFormatVersion},
-          {"generator", std::string("Plenopath Studio ") + PLENOPATH_VERSION},
-          {"title", project.tour.title},
-          {"description", project.tour.description},
-          {"units", "m"},
-          {"camera_height_m", project.capture.camera_height_m > 0 ? project.capture.camera_height_m : 1.6},
-          {"image", {{"projection", "equirectangular"}, {"full_width", full_width}, {"preview_width", preview_width}}},
-          {"start_frame", start_frame},
-          {"path", {{"columns", {"index", "x", "y", "heading_deg", "s"}}, {"frames", frames}, {"length_m", s.empty() ? 0.0 : s.back()}}},
-          {"keyframes", keyframes},
-          {"cells", cells},
-          {"plan", {{"svg", "plan.svg"}, {"extents", extents}, {"layers", layers}, {"lines", lines}, {"labels", labels}}},
-          {"hotspots", hotspots},
-          {"geo_anchor", geo}};
+  return {
+      {"format", kTourFormatName},
+      {"version", kTourFormatVersion},
+      {"generator", std::string("Plenopath Studio ") + PLENOPATH_VERSION},
+      {"title", project.tour.title},
+      {"description", project.tour.description},
+      {"units", "m"},
+      {"camera_height_m", project.capture.camera_height_m > 0 ? project.capture.camera_height_m : 1.6},
+      {"image",
+       {{"projection", "equirectangular"}, {"full_width", full_width}, {"preview_width", preview_width}}},
+      {"start_frame", start_frame},
+      {"path",
+       {{"columns", {"index", "x", "y", "heading_deg", "s"}},
+        {"frames", frames},
+        {"length_m", s.empty() ? 0.0 : s.back()}}},
+      {"keyframes", keyframes},
+      {"cells", cells},
+      {"plan",
+       {{"svg", "plan.svg"}, {"extents", extents}, {"layers", layers}, {"lines", lines}, {"labels", labels}}},
+      {"hotspots", hotspots},
+      {"geo_anchor", geo}};
 }
 
 Project project_from_tour_json(const json& tour, const std::string& file) {
@@ -122,8 +139,8 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
     r.fail(std::string("not a Plenopath tour (\"format\" must be \"") + kTourFormatName + "\")");
   const int version = r.integer("version");
   if (version > kTourFormatVersion)
-    r.at("version").fail("tour format version " + std::to_string(version) + " is newer than this build reads (" +
-                         std::to_string(kTourFormatVersion) + ")");
+    r.at("version").fail("tour format version " + std::to_string(version) +
+                         " is newer than this build reads (" + std::to_string(kTourFormatVersion) + ")");
   Project p;
   p.tour.title = r.string("title");
   p.tour.description = r.string_or("description", "");
@@ -177,13 +194,14 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
     const int layer = l.at(4).integer();
     if (layer < 0 || layer >= static_cast<int>(p.plan.layers.size())) l.at(4).fail("no such layer");
     const PlanLayer& pl = p.plan.layers[static_cast<std::size_t>(layer)];
-    p.plan.segments.push_back({{l.at(0).number(), l.at(1).number()}, {l.at(2).number(), l.at(3).number()},
-                               pl.name, pl.occluder});
+    p.plan.segments.push_back(
+        {{l.at(0).number(), l.at(1).number()}, {l.at(2).number(), l.at(3).number()}, pl.name, pl.occluder});
   }
   if (auto labels = plan.find("labels"))
     for (std::size_t i = 0; i < labels->size(); ++i) {
       const JsonReader l = labels->at(i);
-      p.plan.labels.push_back({{l.number("x"), l.number("y")}, l.string("text"), l.number_or("height", 0.0), ""});
+      p.plan.labels.push_back(
+          {{l.number("x"), l.number("y")}, l.string("text"), l.number_or("height", 0.0), ""});
     }
 
   const JsonReader hotspots = r.at("hotspots");

@@ -10,13 +10,13 @@ namespace plenopath {
 
 struct KeyframeImageFiles {
   int frame = 0;
-  std::string preview, full;                 // package-relative JPEG paths
-  std::string preview_script, full_script;   // package-relative .js wrappers ("" when not written)
+  std::string preview, full;                // package-relative JPEG paths
+  std::string preview_script, full_script;  // package-relative .js wrappers ("" when not written)
 };
 
 struct HotspotMediaFile {
-  std::string id;     // hotspot id
-  std::string media;  // package-relative path ("" when the media is missing)
+  std::string id;            // hotspot id
+  std::string media;         // package-relative path ("" when the media is missing)
   std::string action_media;  // package-relative path of the action's media (swap image, video, sound)
 };
 

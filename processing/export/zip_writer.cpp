@@ -54,7 +54,8 @@ void write_zip_file(const std::string& file, const std::vector<ZipEntry>& entrie
   // DOS date/time of 2026-01-01 00:00: a fixed stamp keeps packages reproducible.
   constexpr std::uint32_t kDosTime = 0, kDosDate = ((2026 - 1980) << 9) | (1 << 5) | 1;
   for (const ZipEntry& e : entries) {
-    if (!is_safe_package_path(e.name)) throw file_error(file, "unsafe path inside the package: '" + e.name + "'");
+    if (!is_safe_package_path(e.name))
+      throw file_error(file, "unsafe path inside the package: '" + e.name + "'");
     if (e.data.size() >= kLimit || archive.size() >= kLimit - e.data.size() - 1024)
       throw file_error(file, "package larger than 4 GiB (ZIP64 is not supported)");
     const std::uint32_t crc = crc32_of(e.data);

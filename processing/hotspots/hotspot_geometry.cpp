@@ -35,7 +35,8 @@ void fit_plane(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3d* norm
 
 // Bilinear sample of a flat image at continuous coordinates (pixel centres at +0.5), clamped at the edges.
 cv::Vec3b sample_clamped(const cv::Mat& image, double x, double y) {
-  const double fx = std::clamp(x - 0.5, 0.0, image.cols - 1.0), fy = std::clamp(y - 0.5, 0.0, image.rows - 1.0);
+  const double fx = std::clamp(x - 0.5, 0.0, image.cols - 1.0),
+               fy = std::clamp(y - 0.5, 0.0, image.rows - 1.0);
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
   const int x1 = std::min(x0 + 1, image.cols - 1), y1 = std::min(y0 + 1, image.rows - 1);
   const double tx = fx - x0, ty = fy - y0;
@@ -51,7 +52,8 @@ cv::Vec3b sample_clamped(const cv::Mat& image, double x, double y) {
 void check_corners(const std::vector<SphericalAngles>& corners) {
   if (corners.size() < 3) throw Error("a hotspot needs at least three corners");
   for (const auto& c : corners)
-    if (!std::isfinite(c.azimuth) || !std::isfinite(c.elevation)) throw Error("a hotspot corner is not finite");
+    if (!std::isfinite(c.azimuth) || !std::isfinite(c.elevation))
+      throw Error("a hotspot corner is not finite");
 }
 
 }  // namespace
@@ -91,7 +93,8 @@ LiftedQuad lift_quad_to_wall(const std::vector<SphericalAngles>& corners, const 
       best = static_cast<int>(i);
     }
   }
-  if (best < 0) throw Error("no wall of the plan is hit in the hotspot's direction: place it from depth instead");
+  if (best < 0)
+    throw Error("no wall of the plan is hit in the hotspot's direction: place it from depth instead");
   const PlanSegment& wall = plan.segments[static_cast<std::size_t>(best)];
   const Eigen::Vector2d along = (wall.b - wall.a).normalized();
   Eigen::Vector3d n(-along.y(), along.x(), 0.0);
@@ -122,7 +125,8 @@ LiftedQuad lift_quad_from_depth(const std::vector<SphericalAngles>& corners, con
                                 const cv::Mat& depth, const HotspotLiftOptions& options) {
   options.check();
   check_corners(corners);
-  if (depth.empty() || depth.type() != CV_32FC1) throw Error("placing a hotspot from depth needs a depth map");
+  if (depth.empty() || depth.type() != CV_32FC1)
+    throw Error("placing a hotspot from depth needs a depth map");
   const Eigen::Vector3d c = camera_centre(pose, options.camera_height_m);
   std::vector<Eigen::Vector3d> raw;
   for (const auto& a : corners) {
@@ -152,13 +156,14 @@ LiftedQuad lift_quad_from_depth(const std::vector<SphericalAngles>& corners, con
   return quad;
 }
 
-SphericalAngles direction_in_frame(const Eigen::Vector3d& world, const PathFrame& pose, double camera_height_m) {
+SphericalAngles direction_in_frame(const Eigen::Vector3d& world, const PathFrame& pose,
+                                   double camera_height_m) {
   const Eigen::Vector3d v = world - camera_centre(pose, camera_height_m);
   return bearing_to_angles(world_from_camera_rotation(pose.heading).transpose() * v);
 }
 
-Eigen::Vector2d project_to_equirect(const Eigen::Vector3d& world, const PathFrame& pose, double camera_height_m,
-                                    int width, int height) {
+Eigen::Vector2d project_to_equirect(const Eigen::Vector3d& world, const PathFrame& pose,
+                                    double camera_height_m, int width, int height) {
   return angles_to_equirect(direction_in_frame(world, pose, camera_height_m), width, height);
 }
 
@@ -176,7 +181,8 @@ std::optional<Eigen::Vector2d> project_to_view(const Eigen::Vector3d& world, con
 }
 
 cv::Matx33d media_to_view_homography(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
-                                     double camera_height_m, const PerspectiveView& view, cv::Size media_size) {
+                                     double camera_height_m, const PerspectiveView& view,
+                                     cv::Size media_size) {
   if (quad.size() != 4) throw Error("a homography needs a quad of four corners");
   const double w = media_size.width, h = media_size.height;
   const Eigen::Vector2d from[4] = {{0, 0}, {w, 0}, {w, h}, {0, h}};
@@ -196,8 +202,9 @@ cv::Matx33d media_to_view_homography(const std::vector<Eigen::Vector3d>& quad, c
   return cv::Matx33d(hv(0), hv(1), hv(2), hv(3), hv(4), hv(5), hv(6), hv(7), 1.0);
 }
 
-int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media, const std::vector<Eigen::Vector3d>& quad,
-                             const PathFrame& pose, double camera_height_m) {
+int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media,
+                             const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
+                             double camera_height_m) {
   if (equirect.empty() || equirect.type() != CV_8UC3) throw Error("warp: the panorama must be 8-bit BGR");
   if (media.empty() || media.type() != CV_8UC3) throw Error("warp: the media must be 8-bit BGR");
   if (quad.size() != 4) throw Error("warp: a quad needs four corners");
@@ -231,8 +238,8 @@ int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media, const std:
   for (int v = v0; v <= v1; ++v)
     for (int uu = u0; uu <= u1; ++uu) {
       const int u = ((uu % equirect.cols) + equirect.cols) % equirect.cols;
-      const Eigen::Vector3d d =
-          world_from_camera_rotation(pose.heading) * equirect_to_bearing({u + 0.5, v + 0.5}, equirect.cols, equirect.rows);
+      const Eigen::Vector3d d = world_from_camera_rotation(pose.heading) *
+                                equirect_to_bearing({u + 0.5, v + 0.5}, equirect.cols, equirect.rows);
       const double denom = n.dot(d);
       if (std::abs(denom) < 1e-12) continue;
       const double t = n.dot(o - c) / denom;
@@ -248,7 +255,8 @@ int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media, const std:
 double quad_consistency_m(const LiftedQuad& a, const LiftedQuad& b) {
   if (a.corners.size() != b.corners.size()) return INFINITY;
   double worst = 0;
-  for (std::size_t i = 0; i < a.corners.size(); ++i) worst = std::max(worst, (a.corners[i] - b.corners[i]).norm());
+  for (std::size_t i = 0; i < a.corners.size(); ++i)
+    worst = std::max(worst, (a.corners[i] - b.corners[i]).norm());
   return worst;
 }
 

@@ -18,17 +18,18 @@
 namespace plenopath {
 
 struct LiftedQuad {
-  std::vector<Eigen::Vector3d> corners;  // world frame, in the marked order
+  std::vector<Eigen::Vector3d> corners;              // world frame, in the marked order
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, facing the camera that marked it
-  double planarity_rms_m = 0.0;          // how far the unsnapped corners were from the fitted plane
-  int wall_segment = -1;                 // index into FloorPlan::segments when snapped to a wall
-  std::string warning;                   // e.g. corners that straddle two walls; empty when all is well
+  double planarity_rms_m = 0.0;  // how far the unsnapped corners were from the fitted plane
+  int wall_segment = -1;         // index into FloorPlan::segments when snapped to a wall
+  std::string warning;           // e.g. corners that straddle two walls; empty when all is well
 };
 
 struct HotspotLiftOptions {
   double camera_height_m = 1.6;
-  double wall_height_m = 2.8;        // corners above this are still accepted, with a warning
-  double max_corner_spread_m = 0.05; // corners whose depth-lifted points leave the fitted plane by more: warn
+  double wall_height_m = 2.8;  // corners above this are still accepted, with a warning
+  double max_corner_spread_m =
+      0.05;  // corners whose depth-lifted points leave the fitted plane by more: warn
   void check() const;
 };
 
@@ -43,9 +44,10 @@ LiftedQuad lift_quad_from_depth(const std::vector<SphericalAngles>& corners, con
                                 const cv::Mat& depth, const HotspotLiftOptions& options = {});
 
 // Where a world point appears in the panorama of frame `pose` (equirect pixel coordinates, width x height).
-Eigen::Vector2d project_to_equirect(const Eigen::Vector3d& world, const PathFrame& pose, double camera_height_m,
-                                    int width, int height);
-SphericalAngles direction_in_frame(const Eigen::Vector3d& world, const PathFrame& pose, double camera_height_m);
+Eigen::Vector2d project_to_equirect(const Eigen::Vector3d& world, const PathFrame& pose,
+                                    double camera_height_m, int width, int height);
+SphericalAngles direction_in_frame(const Eigen::Vector3d& world, const PathFrame& pose,
+                                   double camera_height_m);
 
 // A pinhole view from the frame's nodal point (as the panorama view and the player draw): looking at
 // world yaw/pitch with a vertical field of view, width x height pixels.
@@ -60,13 +62,15 @@ std::optional<Eigen::Vector2d> project_to_view(const Eigen::Vector3d& world, con
 // corner 1 at (w, 0), corner 2 at (w, h), corner 3 at (0, h)) to view pixels. Throws when a corner is
 // behind the camera.
 cv::Matx33d media_to_view_homography(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
-                                     double camera_height_m, const PerspectiveView& view, cv::Size media_size);
+                                     double camera_height_m, const PerspectiveView& view,
+                                     cv::Size media_size);
 
 // Paints `media` onto the quad in an equirectangular frame (CV_8UC3, in place): each pixel's ray meets the
 // quad's plane and, when inside the quad, takes the media's colour there (bilinear). Returns the number of
 // pixels painted. The quad must be a planar parallelogram-like convex quad (corners in order).
-int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media, const std::vector<Eigen::Vector3d>& quad,
-                             const PathFrame& pose, double camera_height_m);
+int warp_media_into_equirect(cv::Mat& equirect, const cv::Mat& media,
+                             const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
+                             double camera_height_m);
 
 // How far apart the quad's corners marked in two frames lift (max corner distance, metres): a large value
 // means the marks are not consistent with one plane seen from both.

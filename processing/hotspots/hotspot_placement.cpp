@@ -17,7 +17,9 @@ Eigen::Vector3d world_ray(const SphericalAngles& a, const PathFrame& pose) {
 // Whether the open 2-D segments p0-p1 and q0-q1 cross (touching at an end does not count as crossing).
 bool segments_cross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
                     const Eigen::Vector2d& q1) {
-  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+  };
   const Eigen::Vector2d r = p1 - p0, s = q1 - q0;
   const double denom = cross(r, s);
   if (std::abs(denom) < 1e-15) return false;  // parallel: a sight line grazing a wall is not blocked
@@ -53,9 +55,12 @@ LiftedQuad lift_onto_facing_plane(const std::vector<SphericalAngles>& corners, c
 
 const char* to_string(HotspotPlacement placement) {
   switch (placement) {
-    case HotspotPlacement::kWall: return "wall";
-    case HotspotPlacement::kDepth: return "depth";
-    case HotspotPlacement::kFacingCamera: return "facing_camera";
+    case HotspotPlacement::kWall:
+      return "wall";
+    case HotspotPlacement::kDepth:
+      return "depth";
+    case HotspotPlacement::kFacingCamera:
+      return "facing_camera";
   }
   return "wall";
 }
@@ -75,11 +80,13 @@ double camera_height_or_default(double capture_camera_height_m) {
 }
 
 PlacedQuad place_hotspot_quad(const std::vector<SphericalAngles>& corners, const PathFrame& pose,
-                              const FloorPlan& plan, const cv::Mat& depth, const HotspotPlacementOptions& options) {
+                              const FloorPlan& plan, const cv::Mat& depth,
+                              const HotspotPlacementOptions& options) {
   options.check();
   if (corners.size() < 3) throw Error("a hotspot needs at least three corners");
   for (const auto& c : corners)
-    if (!std::isfinite(c.azimuth) || !std::isfinite(c.elevation)) throw Error("a hotspot corner is not finite");
+    if (!std::isfinite(c.azimuth) || !std::isfinite(c.elevation))
+      throw Error("a hotspot corner is not finite");
 
   PlacedQuad result;
   std::string wall_problem;
@@ -89,7 +96,8 @@ PlacedQuad place_hotspot_quad(const std::vector<SphericalAngles>& corners, const
     result.placement = HotspotPlacement::kWall;
     have_wall = true;
     if (result.quad.warning.empty()) {
-      result.message = "snapped to the wall it lies on (plan segment " + std::to_string(result.quad.wall_segment) + ")";
+      result.message =
+          "snapped to the wall it lies on (plan segment " + std::to_string(result.quad.wall_segment) + ")";
       return result;
     }
     wall_problem = result.quad.warning;
@@ -112,7 +120,8 @@ PlacedQuad place_hotspot_quad(const std::vector<SphericalAngles>& corners, const
     result.message = "snapped to a wall, but " + wall_problem;
     return result;
   }
-  result.quad = lift_onto_facing_plane(corners, pose, options.lift.camera_height_m, options.fallback_distance_m);
+  result.quad =
+      lift_onto_facing_plane(corners, pose, options.lift.camera_height_m, options.fallback_distance_m);
   result.placement = HotspotPlacement::kFacingCamera;
   char distance[32];
   std::snprintf(distance, sizeof distance, "%.1f", options.fallback_distance_m);
@@ -152,8 +161,9 @@ Eigen::Vector3d point_on_quad_plane(const std::vector<Eigen::Vector3d>& quad, co
   return c + t * d;
 }
 
-bool hotspot_visible_from(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose, const FloorPlan& plan,
-                          const HotspotVisibilityOptions& options, const PathFrame* authoring_pose) {
+bool hotspot_visible_from(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
+                          const FloorPlan& plan, const HotspotVisibilityOptions& options,
+                          const PathFrame* authoring_pose) {
   options.check();
   if (quad.empty()) return false;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -198,7 +208,8 @@ int position_to_show_hotspot(const Hotspot& hotspot, const CameraPath& path, con
   for (int step = 0; step < n; ++step)
     for (int candidate : {near_position - step, near_position + step}) {
       if (candidate < 0 || candidate >= n) continue;
-      if (hotspot_visible_from(hotspot.world_corners, path.frames[static_cast<std::size_t>(candidate)], plan, options))
+      if (hotspot_visible_from(hotspot.world_corners, path.frames[static_cast<std::size_t>(candidate)], plan,
+                               options))
         return candidate;
     }
   return -1;

@@ -24,9 +24,9 @@ enum class HotspotPlacement {
 const char* to_string(HotspotPlacement placement);
 
 struct HotspotPlacementOptions {
-  HotspotLiftOptions lift;             // camera and wall height, depth spread tolerance
-  double fallback_distance_m = 3.0;    // no wall and no depth: the quad's plane this far in front
-  void check() const;                  // throws Error naming the bad field
+  HotspotLiftOptions lift;           // camera and wall height, depth spread tolerance
+  double fallback_distance_m = 3.0;  // no wall and no depth: the quad's plane this far in front
+  void check() const;                // throws Error naming the bad field
 };
 
 struct PlacedQuad {
@@ -65,8 +65,8 @@ struct HotspotVisibilityOptions {
 // 5 cm in front of the quad, so the quad's own wall does not count) crosses no occluder of the plan. With
 // `authoring_pose` (the frame it was marked in) "in front" is that camera's side, and a camera behind the
 // quad's plane does not see it.
-bool hotspot_visible_from(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose, const FloorPlan& plan,
-                          const HotspotVisibilityOptions& options = {},
+bool hotspot_visible_from(const std::vector<Eigen::Vector3d>& quad, const PathFrame& pose,
+                          const FloorPlan& plan, const HotspotVisibilityOptions& options = {},
                           const PathFrame* authoring_pose = nullptr);
 
 // The path position to show a hotspot at: its authoring frame when it is on the path, else the position

@@ -39,12 +39,15 @@ std::string media_problem(const std::string& file, const std::string& expected, 
   if (!fs::is_regular_file(file, ec)) return "media is not a file: " + file;
   const std::string type = media_type_of(file);
   if (type.empty()) return "media has an unknown file type: " + file;
-  if (!expected.empty() && type != expected && !(expected == "visual" && (type == "image" || type == "video")))
+  if (!expected.empty() && type != expected &&
+      !(expected == "visual" && (type == "image" || type == "video")))
     return "media is " + std::string(type == "image" ? "an " : "a ") + type + " file where " +
-           (expected == "visual" ? std::string("an image or a video") : (expected == "image" ? "an " : "a ") + expected) +
+           (expected == "visual" ? std::string("an image or a video")
+                                 : (expected == "image" ? "an " : "a ") + expected) +
            " is needed: " + file;
   std::ifstream in(file, std::ios::binary);
-  if (!in || in.peek() == std::ifstream::traits_type::eof()) return "media file is empty or unreadable: " + file;
+  if (!in || in.peek() == std::ifstream::traits_type::eof())
+    return "media file is empty or unreadable: " + file;
   if (!decode) return "";
   if (type == "image") {
     if (cv::imread(file, cv::IMREAD_REDUCED_COLOR_8).empty()) return "media image cannot be decoded: " + file;
@@ -57,9 +60,11 @@ std::string media_problem(const std::string& file, const std::string& expected, 
   return "";
 }
 
-void add(std::vector<HotspotWarning>& out, const Hotspot& h, const std::string& field, const std::string& message) {
-  out.push_back({h.id, field, "hotspot '" + h.id + "' (" + (h.title.empty() ? std::string("untitled") : h.title) +
-                                  "): " + message});
+void add(std::vector<HotspotWarning>& out, const Hotspot& h, const std::string& field,
+         const std::string& message) {
+  out.push_back(
+      {h.id, field,
+       "hotspot '" + h.id + "' (" + (h.title.empty() ? std::string("untitled") : h.title) + "): " + message});
 }
 
 const PathFrame* frame_with_index(const CameraPath& path, int index) {
@@ -77,7 +82,8 @@ void check_geometry(const Hotspot& h, const Project& project, const HotspotValid
     return;
   }
   if (h.kind == HotspotKind::kMovieTexture && h.world_corners.size() != 4)
-    add(out, h, "world_corners", "a movie texture needs four corners, it has " + std::to_string(h.world_corners.size()));
+    add(out, h, "world_corners",
+        "a movie texture needs four corners, it has " + std::to_string(h.world_corners.size()));
   Plane3 plane;
   try {
     plane = fit_plane(h.world_corners);
@@ -98,7 +104,8 @@ void check_geometry(const Hotspot& h, const Project& project, const HotspotValid
       marks.corners.push_back(point_on_quad_plane(h.world_corners, {c.x(), c.y()}, *pose, camera_height));
   } catch (const Error& e) {
     add(out, h, "world_corners",
-        "its corners marked in frame " + std::to_string(h.frame) + " do not meet its 3-D plane (" + e.what() + ")");
+        "its corners marked in frame " + std::to_string(h.frame) + " do not meet its 3-D plane (" + e.what() +
+            ")");
     return;
   }
   const double off = quad_consistency_m(marks, stored);
@@ -116,7 +123,8 @@ void HotspotValidationOptions::check() const {
 }
 
 std::string media_type_of(const std::string& file) {
-  static const std::set<std::string> images{".png", ".jpg", ".jpeg", ".bmp", ".webp", ".gif", ".tif", ".tiff"};
+  static const std::set<std::string> images{".png",  ".jpg", ".jpeg", ".bmp",
+                                            ".webp", ".gif", ".tif",  ".tiff"};
   static const std::set<std::string> videos{".mp4", ".m4v", ".mov", ".mkv", ".avi", ".webm", ".ogv"};
   static const std::set<std::string> sounds{".mp3", ".wav", ".ogg", ".oga", ".m4a", ".aac", ".flac"};
   const std::string ext = lower_extension(file);
@@ -128,7 +136,8 @@ std::string media_type_of(const std::string& file) {
 
 bool text_has_markup(const std::string& text) {
   // A tag (<b>, </p>, <img ...>, <!-- -->) or a character entity (&amp; &#60; &#x3c;).
-  static const std::regex markup(R"(<\s*/?\s*[A-Za-z!][^>]*>|&(#[0-9]+|#[xX][0-9A-Fa-f]+|[A-Za-z][A-Za-z0-9]*);)");
+  static const std::regex markup(
+      R"(<\s*/?\s*[A-Za-z!][^>]*>|&(#[0-9]+|#[xX][0-9A-Fa-f]+|[A-Za-z][A-Za-z0-9]*);)");
   return std::regex_search(text, markup);
 }
 
@@ -180,11 +189,13 @@ std::vector<HotspotWarning> validate_hotspot(const Hotspot& h, const Project& pr
         if (!project.path.empty() && !frame_with_index(project.path, std::stoi(t)))
           add(out, h, "action_target", "jump: frame " + t + " is not on the camera path");
       } else if (!std::regex_match(t, url)) {
-        add(out, h, "action_target", "jump: the target must be a frame number or another tour's http(s) address");
+        add(out, h, "action_target",
+            "jump: the target must be a frame number or another tour's http(s) address");
       }
     } else if (h.action == "open_url") {
       static const std::regex url(R"(https?://\S+)", std::regex::icase);
-      if (!std::regex_match(t, url)) add(out, h, "action_target", "open URL: only http and https links open: '" + t + "'");
+      if (!std::regex_match(t, url))
+        add(out, h, "action_target", "open URL: only http and https links open: '" + t + "'");
     } else if (h.action == "show_text") {
       if (t.empty()) add(out, h, "action_target", "show text: the text is empty");
       if (text_has_markup(t))
@@ -198,13 +209,16 @@ std::vector<HotspotWarning> validate_hotspot(const Hotspot& h, const Project& pr
   return out;
 }
 
-std::vector<HotspotWarning> validate_hotspots(const Project& project, const HotspotValidationOptions& options) {
+std::vector<HotspotWarning> validate_hotspots(const Project& project,
+                                              const HotspotValidationOptions& options) {
   options.check();
   std::vector<HotspotWarning> out;
   std::set<std::string> seen;
   for (const Hotspot& h : project.hotspots) {
-    if (h.id.empty()) add(out, h, "id", "has no id");
-    else if (!seen.insert(h.id).second) add(out, h, "id", "its id is used by another hotspot");
+    if (h.id.empty())
+      add(out, h, "id", "has no id");
+    else if (!seen.insert(h.id).second)
+      add(out, h, "id", "its id is used by another hotspot");
     for (auto& w : validate_hotspot(h, project, options)) out.push_back(std::move(w));
   }
   return out;

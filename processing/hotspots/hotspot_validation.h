@@ -28,7 +28,8 @@ struct HotspotValidationOptions {
 std::vector<HotspotWarning> validate_hotspot(const Hotspot& hotspot, const Project& project,
                                              const HotspotValidationOptions& options = {});
 // All hotspots, in order; duplicate ids are reported too.
-std::vector<HotspotWarning> validate_hotspots(const Project& project, const HotspotValidationOptions& options = {});
+std::vector<HotspotWarning> validate_hotspots(const Project& project,
+                                              const HotspotValidationOptions& options = {});
 
 // Whether author text looks like markup (HTML/XML tags or character entities). Such text is shown as is.
 bool text_has_markup(const std::string& text);

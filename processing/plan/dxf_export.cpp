@@ -11,7 +11,8 @@
 namespace plenopath {
 
 std::string DxfExportOptions::check() const {
-  if (units != "mm" && units != "cm" && units != "m") return "units must be mm, cm or m (got '" + units + "')";
+  if (units != "mm" && units != "cm" && units != "m")
+    return "units must be mm, cm or m (got '" + units + "')";
   return {};
 }
 
@@ -29,8 +30,10 @@ Units units_of(const std::string& name) {
 
 DL_Attributes attributes(const std::string& layer) { return DL_Attributes(layer, 256, -1, "BYLAYER", 1.0); }
 
-void write_polyline(DL_Dxf& dxf, DL_WriterA& dw, const DrawingPolyline& p, double k, const std::string& layer) {
-  dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(p.points.size()), 0, 0, p.closed ? 1 : 0), attributes(layer));
+void write_polyline(DL_Dxf& dxf, DL_WriterA& dw, const DrawingPolyline& p, double k,
+                    const std::string& layer) {
+  dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(p.points.size()), 0, 0, p.closed ? 1 : 0),
+                    attributes(layer));
   for (const auto& v : p.points) dxf.writeVertex(dw, DL_VertexData(v.x() * k, v.y() * k, 0.0, 0.0));
   dxf.writePolylineEnd(dw);
 }
@@ -110,16 +113,20 @@ void write_dxf(const PlanDrawing& d, const std::string& file, const DxfExportOpt
 
   dw->sectionEntities();
   for (const auto& l : d.lines)
-    dxf.writeLine(*dw, DL_LineData(l.a.x() * k, l.a.y() * k, 0.0, l.b.x() * k, l.b.y() * k, 0.0), attributes(l.layer));
+    dxf.writeLine(*dw, DL_LineData(l.a.x() * k, l.a.y() * k, 0.0, l.b.x() * k, l.b.y() * k, 0.0),
+                  attributes(l.layer));
   for (const auto& p : d.polylines) write_polyline(dxf, *dw, p, k, p.layer);
   for (const auto& c : d.circles)
-    dxf.writeCircle(*dw, DL_CircleData(c.centre.x() * k, c.centre.y() * k, 0.0, c.radius * k), attributes(c.layer));
+    dxf.writeCircle(*dw, DL_CircleData(c.centre.x() * k, c.centre.y() * k, 0.0, c.radius * k),
+                    attributes(c.layer));
   for (const auto& a : d.arcs)
-    dxf.writeArc(*dw, DL_ArcData(a.centre.x() * k, a.centre.y() * k, 0.0, a.radius * k, a.start_deg, a.end_deg),
+    dxf.writeArc(*dw,
+                 DL_ArcData(a.centre.x() * k, a.centre.y() * k, 0.0, a.radius * k, a.start_deg, a.end_deg),
                  attributes(a.layer));
   for (const auto& ins : d.inserts)
-    dxf.writeInsert(*dw, DL_InsertData(ins.block, ins.position.x() * k, ins.position.y() * k, 0.0, 1.0, 1.0, 1.0,
-                                       ins.rotation_deg, 1, 1, 0.0, 0.0),
+    dxf.writeInsert(*dw,
+                    DL_InsertData(ins.block, ins.position.x() * k, ins.position.y() * k, 0.0, 1.0, 1.0, 1.0,
+                                  ins.rotation_deg, 1, 1, 0.0, 0.0),
                     attributes(ins.layer));
   for (const auto& t : d.texts) {
     const double x = t.position.x() * k, y = t.position.y() * k;
@@ -139,7 +146,9 @@ PlanDrawing drawing_from_plan(const FloorPlan& plan) {
   for (const auto& l : plan.layers) d.layers.push_back({l.name, l.color});
   // Segments that are edges of an outline are written with the outline only.
   auto key = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::string& layer) {
-    auto lt = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); };
+    auto lt = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+      return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+    };
     const Eigen::Vector2d& lo = lt(a, b) ? a : b;
     const Eigen::Vector2d& hi = lt(a, b) ? b : a;
     return std::make_tuple(lo.x(), lo.y(), hi.x(), hi.y(), layer);
@@ -147,8 +156,10 @@ PlanDrawing drawing_from_plan(const FloorPlan& plan) {
   std::multiset<std::tuple<double, double, double, double, std::string>> outline_edges;
   for (const auto& o : plan.outlines) {
     d.polylines.push_back({o.points, o.closed, o.layer});
-    for (std::size_t i = 0; i + 1 < o.points.size(); ++i) outline_edges.insert(key(o.points[i], o.points[i + 1], o.layer));
-    if (o.closed && o.points.size() > 2) outline_edges.insert(key(o.points.back(), o.points.front(), o.layer));
+    for (std::size_t i = 0; i + 1 < o.points.size(); ++i)
+      outline_edges.insert(key(o.points[i], o.points[i + 1], o.layer));
+    if (o.closed && o.points.size() > 2)
+      outline_edges.insert(key(o.points.back(), o.points.front(), o.layer));
   }
   for (const auto& s : plan.segments) {
     auto it = outline_edges.find(key(s.a, s.b, s.layer));
@@ -158,7 +169,8 @@ PlanDrawing drawing_from_plan(const FloorPlan& plan) {
     }
     d.lines.push_back({s.a, s.b, s.layer});
   }
-  for (const auto& l : plan.labels) d.texts.push_back({l.position, l.height > 0 ? l.height : 0.3, l.text, l.layer});
+  for (const auto& l : plan.labels)
+    d.texts.push_back({l.position, l.height > 0 ? l.height : 0.3, l.text, l.layer});
   return d;
 }
 

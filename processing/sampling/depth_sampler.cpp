@@ -20,7 +20,8 @@ void DepthSamplingOptions::check() const {
 }
 
 Envelope envelope_from_depth(const cv::Mat& depth, const PathFrame& pose) {
-  if (depth.empty() || depth.type() != CV_32F) throw Error("envelope from depth: CV_32F depth in metres expected");
+  if (depth.empty() || depth.type() != CV_32F)
+    throw Error("envelope from depth: CV_32F depth in metres expected");
   Envelope e;
   const int w = depth.cols, h = depth.rows;
   const int upper = std::max(0, h / 2 - 1), lower = std::min(h - 1, h / 2);
@@ -39,7 +40,8 @@ Envelope envelope_from_depth(const cv::Mat& depth, const PathFrame& pose) {
     e.polygon.clear();
     return e;
   }
-  std::reverse(e.polygon.begin(), e.polygon.end());  // columns run clockwise: counter-clockwise as envelopes are
+  std::reverse(e.polygon.begin(),
+               e.polygon.end());  // columns run clockwise: counter-clockwise as envelopes are
   double twice = 0.0;
   for (std::size_t i = 0; i < e.polygon.size(); ++i) {
     const auto& a = e.polygon[i];
@@ -66,8 +68,10 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
     if (depth.cols > options.max_depth_width) {
       // Nearest, not area: averaging a hit with a no-hit (0) would invent short ranges at silhouettes.
       cv::Mat small;
-      cv::resize(depth, small, cv::Size(options.max_depth_width, std::max(1, depth.rows * options.max_depth_width / depth.cols)),
-                 0, 0, cv::INTER_NEAREST);
+      cv::resize(
+          depth, small,
+          cv::Size(options.max_depth_width, std::max(1, depth.rows * options.max_depth_width / depth.cols)),
+          0, 0, cv::INTER_NEAREST);
       depth = small;
     }
     out.push_back(depth_volume(depth));
@@ -77,7 +81,8 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
   return out;
 }
 
-std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path, const std::vector<DepthVolume>& volumes,
+std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path,
+                                                    const std::vector<DepthVolume>& volumes,
                                                     const DepthSamplingOptions& options) {
   options.check();
   if (volumes.size() != path.size())
@@ -97,7 +102,8 @@ std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path, cons
     double sum = 0.0;
     int count = 0;
     for (int i = first; i < end; ++i)
-      if (volumes[i].covered_solid_angle >= covered && volumes[i].star_volume > 0.0) sum += volumes[i].star_volume, ++count;
+      if (volumes[i].covered_solid_angle >= covered && volumes[i].star_volume > 0.0)
+        sum += volumes[i].star_volume, ++count;
     cell.size = count > 0 ? sum / count : 0.0;
     cells.push_back(cell);
   }
@@ -118,7 +124,8 @@ Keyframes sample_by_depth(const CameraPath& path, const std::vector<DepthVolume>
   options.check();
   check_sampling_parameters(parameters);
   const std::vector<SamplingCell> cells = sampling_cells_from_depth(path, volumes, options);
-  Keyframes k = place_keyframes(path, cell_rule_density(cells, path.length(), options.cells), parameters, pinned);
+  Keyframes k =
+      place_keyframes(path, cell_rule_density(cells, path.length(), options.cells), parameters, pinned);
   k.parameters.method = "depth";
   if (!options.refine_by_loss || !eye_level || eye_level->frames.size() != path.size()) return k;
   const EnvelopeRaster raster(*eye_level, options.raster_cell_m);

@@ -44,7 +44,8 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
 // Cells between significant changes: a change detected at frame k starts a new cell halfway between
 // frames k-1 and k. Size = mean star volume of the cell's frames with enough coverage (the neighbouring
 // cell's when none has). volumes: one per path frame.
-std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path, const std::vector<DepthVolume>& volumes,
+std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path,
+                                                    const std::vector<DepthVolume>& volumes,
                                                     const DepthSamplingOptions& options = {});
 
 // eye_level: every frame's envelope from its depth map (depth_volumes_along_path); without it (or with

@@ -41,14 +41,17 @@ EnvelopeRaster::EnvelopeRaster(const PathEnvelopes& envelopes, double cell_m, in
       for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
         const auto& a = poly[i];
         const auto& b = poly[j];
-        if ((a.y() > y) != (b.y() > y)) crossings.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+        if ((a.y() > y) != (b.y() > y))
+          crossings.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
       std::sort(crossings.begin(), crossings.end());
       for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {
         // Cells whose centre x0 + (c + 0.5) * cell lies in [left, right).
         const int c0 = std::max(0, static_cast<int>(std::ceil((crossings[k] - x0_) / cell_ - 0.5)));
-        const int c1 = std::min(columns_, static_cast<int>(std::ceil((crossings[k + 1] - x0_) / cell_ - 0.5)));
-        for (int c = c0; c < c1; ++c) mask[static_cast<std::size_t>(r) * words_per_row_ + c / 64] |= 1ull << (c % 64);
+        const int c1 =
+            std::min(columns_, static_cast<int>(std::ceil((crossings[k + 1] - x0_) / cell_ - 0.5)));
+        for (int c = c0; c < c1; ++c)
+          mask[static_cast<std::size_t>(r) * words_per_row_ + c / 64] |= 1ull << (c % 64);
         if (c1 > c0) {
           count += c1 - c0;
           first_row = std::min(first_row, r);
@@ -82,8 +85,9 @@ long common_cells_generic(const std::uint64_t* a, const std::uint64_t* b, int r0
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("popcnt"))) long common_cells_popcnt(const std::uint64_t* a, const std::uint64_t* b, int r0,
-                                                            int r1, int w0, int w1, int words_per_row) {
+__attribute__((target("popcnt"))) long common_cells_popcnt(const std::uint64_t* a, const std::uint64_t* b,
+                                                           int r0, int r1, int w0, int w1,
+                                                           int words_per_row) {
   long common = 0;
   for (int r = r0; r < r1; ++r) {
     const std::size_t row = static_cast<std::size_t>(r) * words_per_row;

@@ -26,8 +26,8 @@ class EnvelopeRaster {
   double cell_ = 0.1;
   double x0_ = 0.0, y0_ = 0.0;
   int columns_ = 0, rows_ = 0, words_per_row_ = 0;
-  std::vector<std::uint64_t> bits_;  // frame-major, then row-major words
-  std::vector<int> count_;           // set cells per frame (-1 = no envelope)
+  std::vector<std::uint64_t> bits_;         // frame-major, then row-major words
+  std::vector<int> count_;                  // set cells per frame (-1 = no envelope)
   std::vector<int> row_begin_, row_end_;    // rows holding set cells per frame [begin, end)
   std::vector<int> word_begin_, word_end_;  // words (within a row) holding set cells per frame [begin, end)
 };

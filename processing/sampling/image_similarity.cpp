@@ -11,8 +11,8 @@ namespace plenopath {
 cv::Mat rotate_to_heading(const cv::Mat& image, double from_heading, double to_heading) {
   if (image.empty()) throw Error("rotate_to_heading: empty image");
   const int w = image.cols;
-  double shift = (from_heading - to_heading) / (2.0 * M_PI) * w;  // columns
-  shift -= std::floor(shift / w) * w;                             // [0, w)
+  double shift = (from_heading - to_heading) / (2.0 * M_PI) * w;              // columns
+  shift -= std::floor(shift / w) * w;                                         // [0, w)
   if (std::abs(shift - std::round(shift)) < 1e-6) shift = std::round(shift);  // whole columns stay exact
   int whole = static_cast<int>(std::floor(shift));
   const double fraction = shift - whole;
@@ -53,9 +53,12 @@ double ssim(const cv::Mat& a, const cv::Mat& b) {
   check_pair(a, b, "ssim");
   auto grey = [](const cv::Mat& m) {
     cv::Mat g;
-    if (m.channels() == 3) cv::cvtColor(m, g, cv::COLOR_BGR2GRAY);
-    else if (m.channels() == 4) cv::cvtColor(m, g, cv::COLOR_BGRA2GRAY);
-    else g = m;
+    if (m.channels() == 3)
+      cv::cvtColor(m, g, cv::COLOR_BGR2GRAY);
+    else if (m.channels() == 4)
+      cv::cvtColor(m, g, cv::COLOR_BGRA2GRAY);
+    else
+      g = m;
     cv::Mat f;
     g.convertTo(f, CV_64F);
     return f;

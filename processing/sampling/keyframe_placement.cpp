@@ -156,7 +156,8 @@ DensityProfile clamp_for_spacing(DensityProfile density, int gaps, double min_sp
     const double total = density.total_mass();
     if (!(total > 0.0)) return density;
     double lo = max_spacing > 0.0 ? total / (gaps * 0.9 * max_spacing) : 0.0;
-    double hi = min_spacing > 0.0 ? total / (gaps * 1.1 * min_spacing) : std::numeric_limits<double>::infinity();
+    double hi =
+        min_spacing > 0.0 ? total / (gaps * 1.1 * min_spacing) : std::numeric_limits<double>::infinity();
     if (lo > hi) lo = hi = 0.5 * (lo + hi);  // tight budget: as even as it gets
     for (double& d : density.density) d = std::clamp(d, lo, hi);
   }

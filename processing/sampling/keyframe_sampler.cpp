@@ -26,7 +26,8 @@ Keyframes sample_keyframes(const SamplingInputs& inputs, const SamplingParameter
   if (parameters.method == "depth") {
     if (!inputs.depth_volumes || inputs.depth_volumes->empty())
       throw Error("depth sampling: the capture has no depth maps (depth sampling needs one per frame)");
-    return sample_by_depth(path, *inputs.depth_volumes, parameters, pinned, inputs.depth, inputs.depth_envelopes);
+    return sample_by_depth(path, *inputs.depth_volumes, parameters, pinned, inputs.depth,
+                           inputs.depth_envelopes);
   }
   throw Error("sampling: unknown method '" + parameters.method + "' (uniform, visibility or depth)");
 }

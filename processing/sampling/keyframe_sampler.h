@@ -1,7 +1,8 @@
 #pragma once
 // One entry point for every sampling method (uniform | visibility | depth), used by the command line and
 // the studio. Each method builds a density along the path (density_profile.h) and keyframe_placement.h
-// turns it into keyframes: budget met exactly, first/last and pinned kept, spacing honoured, progressive rank.
+// turns it into keyframes: budget met exactly, first/last and pinned kept, spacing honoured, progressive
+// rank.
 #include <functional>
 #include <vector>
 
@@ -22,9 +23,9 @@ struct SamplingInputs {
   const VisibilityCells* cells = nullptr;
   const std::vector<DepthVolume>* depth_volumes = nullptr;
   const PathEnvelopes* depth_envelopes = nullptr;  // depth: every frame's eye-level envelope (optional)
-  const PathEnvelopes* envelopes = nullptr;  // visibility: every frame's envelope, if already computed
-  const EnvelopeRaster* raster = nullptr;    // visibility: their raster, if already built
-  std::function<void(double)> progress;      // optional; may throw to cancel
+  const PathEnvelopes* envelopes = nullptr;        // visibility: every frame's envelope, if already computed
+  const EnvelopeRaster* raster = nullptr;          // visibility: their raster, if already built
+  std::function<void(double)> progress;            // optional; may throw to cancel
   VisibilitySamplingOptions visibility;
   DepthSamplingOptions depth;
 };

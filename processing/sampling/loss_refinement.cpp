@@ -13,7 +13,8 @@ namespace plenopath {
 void LossRefinementOptions::check() const {
   if (sweeps < 0) throw Error("loss refinement: sweeps must be >= 0");
   if (coarse_candidates < 2) throw Error("loss refinement: coarse_candidates must be >= 2");
-  if (!(min_spacing_m >= 0.0) || !(max_spacing_m >= 0.0)) throw Error("loss refinement: spacing must be >= 0");
+  if (!(min_spacing_m >= 0.0) || !(max_spacing_m >= 0.0))
+    throw Error("loss refinement: spacing must be >= 0");
 }
 
 double interval_loss(const EnvelopeRaster& raster, const std::vector<double>& s, int a, int b) {
@@ -22,15 +23,18 @@ double interval_loss(const EnvelopeRaster& raster, const std::vector<double>& s,
   return sum;
 }
 
-std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<double>& s, std::vector<int> positions,
-                                const std::vector<bool>& fixed, const LossRefinementOptions& options,
+std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<double>& s,
+                                std::vector<int> positions, const std::vector<bool>& fixed,
+                                const LossRefinementOptions& options,
                                 const std::function<void(double)>& progress) {
   options.check();
   const int k = static_cast<int>(positions.size());
   auto spacing_ok = [&](int a, int c, int b) {
-    if (options.min_spacing_m > 0.0 && (s[c] - s[a] < options.min_spacing_m || s[b] - s[c] < options.min_spacing_m))
+    if (options.min_spacing_m > 0.0 &&
+        (s[c] - s[a] < options.min_spacing_m || s[b] - s[c] < options.min_spacing_m))
       return false;
-    if (options.max_spacing_m > 0.0 && (s[c] - s[a] > options.max_spacing_m || s[b] - s[c] > options.max_spacing_m))
+    if (options.max_spacing_m > 0.0 &&
+        (s[c] - s[a] > options.max_spacing_m || s[b] - s[c] > options.max_spacing_m))
       return false;
     return true;
   };
@@ -102,8 +106,9 @@ std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<doub
   return rank;
 }
 
-Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes, const std::vector<int>& pinned,
-                                   const EnvelopeRaster& raster, const LossRefinementOptions& options,
+Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes,
+                                   const std::vector<int>& pinned, const EnvelopeRaster& raster,
+                                   const LossRefinementOptions& options,
                                    const std::function<void(double)>& progress) {
   if (raster.frames() != static_cast<int>(path.size()))
     throw Error("loss refinement: the envelope raster has " + std::to_string(raster.frames()) +

@@ -16,11 +16,11 @@
 namespace plenopath {
 
 struct LossRefinementOptions {
-  int sweeps = 6;               // passes over all keyframes (stops early when nothing moves)
-  int coarse_candidates = 24;   // positions tried per keyframe before the fine search around the best
-  double min_spacing_m = 0.0;   // moves keep these (0 = none)
+  int sweeps = 6;              // passes over all keyframes (stops early when nothing moves)
+  int coarse_candidates = 24;  // positions tried per keyframe before the fine search around the best
+  double min_spacing_m = 0.0;  // moves keep these (0 = none)
   double max_spacing_m = 0.0;
-  void check() const;           // throws plenopath::Error saying which field is wrong
+  void check() const;  // throws plenopath::Error saying which field is wrong
 };
 
 // Summed loss of the frames strictly between keyframes a < b (each against the nearer of the two by arc
@@ -41,8 +41,9 @@ std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<doub
 
 // The whole step on a keyframe set: first, last and `pinned` stay; keyframes move (refine_by_loss with
 // `options`) and are re-ranked (loss_ranks). The budget and parameters are kept.
-Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes, const std::vector<int>& pinned,
-                                   const EnvelopeRaster& raster, const LossRefinementOptions& options = {},
+Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes,
+                                   const std::vector<int>& pinned, const EnvelopeRaster& raster,
+                                   const LossRefinementOptions& options = {},
                                    const std::function<void(double)>& progress = {});
 
 }  // namespace plenopath

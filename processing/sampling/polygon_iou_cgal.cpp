@@ -80,8 +80,8 @@ double polygon_signed_area(const std::vector<Eigen::Vector2d>& polygon) {
   return 0.5 * twice;
 }
 
-double polygon_intersection_area(const std::vector<Eigen::Vector2d>& a_in, const std::vector<Eigen::Vector2d>& b_in,
-                                 bool* exact) {
+double polygon_intersection_area(const std::vector<Eigen::Vector2d>& a_in,
+                                 const std::vector<Eigen::Vector2d>& b_in, bool* exact) {
   if (exact) *exact = true;
   const auto a = distinct_vertices(a_in);
   const auto b = distinct_vertices(b_in);
@@ -101,7 +101,8 @@ double polygon_intersection_area(const std::vector<Eigen::Vector2d>& a_in, const
   return CGAL::to_double(area);
 }
 
-double polygon_iou(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b, bool* exact) {
+double polygon_iou(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
+                   bool* exact) {
   const double area_a = std::abs(polygon_signed_area(distinct_vertices(a)));
   const double area_b = std::abs(polygon_signed_area(distinct_vertices(b)));
   if (exact) *exact = true;

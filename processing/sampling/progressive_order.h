@@ -10,6 +10,7 @@ namespace plenopath {
 // after the first and last (pinned frames), in path order; may be empty. Returns rank per keyframe:
 // 0 = first frame, 1 = last frame, then the fixed ones, then repeatedly the keyframe farthest (in
 // coordinate) from every keyframe ranked so far (ties: the earlier one).
-std::vector<int> progressive_ranks(const std::vector<double>& coordinate, const std::vector<bool>& fixed = {});
+std::vector<int> progressive_ranks(const std::vector<double>& coordinate,
+                                   const std::vector<bool>& fixed = {});
 
 }  // namespace plenopath

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
-#include <thread>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "model/error.h"
 #include "processing/sampling/image_similarity.h"
@@ -77,16 +77,20 @@ std::vector<int> stand_in_positions(const CameraPath& path, const Keyframes& key
   std::size_t k = 0;  // keys[k] is the first keyframe at or after frame i
   for (int i = 0; i < n; ++i) {
     while (k < keys.size() && keys[k] < i) ++k;
-    if (k < keys.size() && keys[k] == i) stand_in[i] = i;
-    else if (k == keys.size()) stand_in[i] = keys.back();
-    else if (k == 0) stand_in[i] = keys[0];
-    else stand_in[i] = (s[i] - s[keys[k - 1]] <= s[keys[k]] - s[i]) ? keys[k - 1] : keys[k];
+    if (k < keys.size() && keys[k] == i)
+      stand_in[i] = i;
+    else if (k == keys.size())
+      stand_in[i] = keys.back();
+    else if (k == 0)
+      stand_in[i] = keys[0];
+    else
+      stand_in[i] = (s[i] - s[keys[k - 1]] <= s[keys[k]] - s[i]) ? keys[k - 1] : keys[k];
   }
   return stand_in;
 }
 
-GeometricLoss geometric_loss(const CameraPath& path, const Keyframes& keyframes, const PathEnvelopes& envelopes,
-                             int threads) {
+GeometricLoss geometric_loss(const CameraPath& path, const Keyframes& keyframes,
+                             const PathEnvelopes& envelopes, int threads) {
   if (envelopes.frames.size() != path.size())
     throw Error("geometric loss: " + std::to_string(envelopes.frames.size()) + " envelopes for a path of " +
                 std::to_string(path.size()) + " frames");
@@ -160,8 +164,8 @@ PhotometricLoss photometric_loss(const CameraPath& path, const Keyframes& keyfra
     const cv::Mat a = shrink(read_frame(frame.index));
     const cv::Mat b = shrink(rotate_to_heading(read_frame(key.index), key.heading, frame.heading));
     if (a.size() != b.size() || a.type() != b.type())
-      throw Error("photometric loss: frames " + std::to_string(frame.index) + " and " + std::to_string(key.index) +
-                  " differ in size or type");
+      throw Error("photometric loss: frames " + std::to_string(frame.index) + " and " +
+                  std::to_string(key.index) + " differ in size or type");
     const double p = std::min(psnr_db(a, b), 100.0);
     const double s = ssim(a, b);
     psnr_sum += p;

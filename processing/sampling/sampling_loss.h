@@ -19,8 +19,8 @@ namespace plenopath {
 struct PathEnvelopes {
   std::vector<Envelope> frames;  // one per path frame, same order
 };
-// threads: 0 = hardware concurrency, 1 = the calling thread only. `progress` (optional) gets the fraction done,
-// from worker threads too, and may throw to cancel.
+// threads: 0 = hardware concurrency, 1 = the calling thread only. `progress` (optional) gets the fraction
+// done, from worker threads too, and may throw to cancel.
 PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraPath& path, int threads = 0,
                                      const std::function<void(double)>& progress = {});
 
@@ -29,15 +29,15 @@ PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraP
 std::vector<int> stand_in_positions(const CameraPath& path, const Keyframes& keyframes);
 
 struct GeometricLoss {
-  double mean = 0.0;      // mean of 1 - IoU over the dropped frames that have envelopes
-  double p95 = 0.0;       // 95th percentile (nearest rank)
+  double mean = 0.0;  // mean of 1 - IoU over the dropped frames that have envelopes
+  double p95 = 0.0;   // 95th percentile (nearest rank)
   double max = 0.0;
-  int dropped = 0;        // frames that are not keyframes
-  int evaluated = 0;      // dropped frames whose envelope and stand-in's envelope both exist
-  int inexact = 0;        // IoUs measured on a grid because a polygon was not simple after rounding
+  int dropped = 0;    // frames that are not keyframes
+  int evaluated = 0;  // dropped frames whose envelope and stand-in's envelope both exist
+  int inexact = 0;    // IoUs measured on a grid because a polygon was not simple after rounding
 };
-GeometricLoss geometric_loss(const CameraPath& path, const Keyframes& keyframes, const PathEnvelopes& envelopes,
-                             int threads = 0);
+GeometricLoss geometric_loss(const CameraPath& path, const Keyframes& keyframes,
+                             const PathEnvelopes& envelopes, int threads = 0);
 
 struct PhotometricOptions {
   int max_frames = 40;   // dropped frames compared at most (spread evenly over the dropped frames)
@@ -49,7 +49,7 @@ struct PhotometricLoss {
   double psnr_min_db = 0.0;
   double ssim_mean = 0.0;
   double ssim_min = 0.0;
-  int frames = 0;             // pairs compared
+  int frames = 0;  // pairs compared
 };
 // read_frame(capture index) returns the frame (BGR 8-bit equirectangular); it may throw Error.
 PhotometricLoss photometric_loss(const CameraPath& path, const Keyframes& keyframes,

@@ -35,7 +35,8 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
 
   // The plan's visibility: index, every frame's envelope, their raster (visibility sampling, geometric loss).
   const std::vector<PlanSegment> walls = project.plan.occluder_segments();
-  const bool want_envelopes = !walls.empty() && (request.geometric_loss || (request.sample && method == "visibility"));
+  const bool want_envelopes =
+      !walls.empty() && (request.geometric_loss || (request.sample && method == "visibility"));
   if (request.sample && method == "visibility") {
     if (project.visibility.empty())
       throw Error("visibility sampling needs the visibility cells: run Process > Compute visibility first");
@@ -56,7 +57,8 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
       c.envelope_path = path;
       c.raster.reset();
     }
-    if (!c.raster && request.sample && method == "visibility") c.raster = std::make_unique<EnvelopeRaster>(*c.envelopes);
+    if (!c.raster && request.sample && method == "visibility")
+      c.raster = std::make_unique<EnvelopeRaster>(*c.envelopes);
   }
 
   // Depth volumes along the path (depth sampling).
@@ -65,12 +67,16 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
       throw Error("depth sampling needs depth maps: import the capture with its depth folder first");
     if (c.volumes.size() != path.size() || !(c.depth_capture == project.capture) || !(c.depth_path == path)) {
       const std::unique_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
-      c.volumes = depth_volumes_along_path(path, [&](int index) {
-        if (index < 0 || index >= source->frame_count() || !source->has_depth(index))
-          throw Error(project.capture.depth_folder + ": no depth map for frame " + std::to_string(index));
-        return source->read_depth(index);
-      }, {}, [&](double f) { progress(0.5 * f, "depth volumes of " + std::to_string(path.size()) + " frames"); },
-      &c.depth_envelopes);
+      c.volumes = depth_volumes_along_path(
+          path,
+          [&](int index) {
+            if (index < 0 || index >= source->frame_count() || !source->has_depth(index))
+              throw Error(project.capture.depth_folder + ": no depth map for frame " + std::to_string(index));
+            return source->read_depth(index);
+          },
+          {},
+          [&](double f) { progress(0.5 * f, "depth volumes of " + std::to_string(path.size()) + " frames"); },
+          &c.depth_envelopes);
       c.depth_capture = project.capture;
       c.depth_path = path;
     }

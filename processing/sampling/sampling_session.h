@@ -18,8 +18,8 @@ struct SamplingRequest {
   SamplingParameters parameters;
   VisibilityRule rule = VisibilityRule::expected_loss;
   std::vector<int> pinned;
-  bool sample = true;         // false: only measure the loss of `keyframes`
-  Keyframes keyframes;        // measured when sample is false
+  bool sample = true;          // false: only measure the loss of `keyframes`
+  Keyframes keyframes;         // measured when sample is false
   bool geometric_loss = true;  // measure it (needs a plan with walls)
 };
 

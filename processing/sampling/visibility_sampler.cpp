@@ -34,7 +34,8 @@ Eigen::Vector2d point_at_arc_length(const CameraPath& path, const std::vector<do
   if (path.empty()) return Eigen::Vector2d::Zero();
   if (at <= s.front()) return path.frames.front().position();
   if (at >= s.back()) return path.frames.back().position();
-  const std::size_t i = static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), at) - s.begin());  // s[i] > at
+  const std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), at) - s.begin());  // s[i] > at
   const double span = s[i] - s[i - 1];
   const double t = span > 0.0 ? (at - s[i - 1]) / span : 0.0;
   return (1.0 - t) * path.frames[i - 1].position() + t * path.frames[i].position();
@@ -74,8 +75,10 @@ DensityProfile expected_loss_density(const CameraPath& path, const VisibilityInd
     const Envelope& a = probe[k];
     const Envelope& b = probe[k + 1];
     double change = 0.0;
-    if (a.status == EnvelopeStatus::ok && b.status == EnvelopeStatus::ok) change = 1.0 - polygon_iou(a.polygon, b.polygon);
-    else if ((a.status == EnvelopeStatus::ok) != (b.status == EnvelopeStatus::ok)) change = 1.0;
+    if (a.status == EnvelopeStatus::ok && b.status == EnvelopeStatus::ok)
+      change = 1.0 - polygon_iou(a.polygon, b.polygon);
+    else if ((a.status == EnvelopeStatus::ok) != (b.status == EnvelopeStatus::ok))
+      change = 1.0;
     profile.breaks.push_back(length * (k + 1) / pieces);
     profile.density.push_back(std::pow(change / step, options.loss_power));
   }
@@ -99,14 +102,16 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
   if (options.rule == VisibilityRule::cell_rule) {
     if (!cells || cells->cells.empty())
       throw Error("visibility sampling: no visibility cells along the path (compute visibility first)");
-    density = cell_rule_density(sampling_cells_from_visibility(path, *cells, index), path.length(), options.cells);
+    density =
+        cell_rule_density(sampling_cells_from_visibility(path, *cells, index), path.length(), options.cells);
   } else {
     if (!index) throw Error("visibility sampling: the expected-loss rule needs the floor plan's visibility");
     density = expected_loss_density(path, *index, options);
   }
   Keyframes k = place_keyframes(path, density, parameters, pinned);
   k.parameters.method = "visibility";
-  if (options.rule != VisibilityRule::expected_loss || !options.refine_by_loss || k.indices.size() < 3) return k;
+  if (options.rule != VisibilityRule::expected_loss || !options.refine_by_loss || k.indices.size() < 3)
+    return k;
 
   // Refinement by the loss each keyframe position causes, on the rasterised envelopes of every frame.
   auto report = [&](double from, double to) {

@@ -41,7 +41,8 @@ struct VisibilitySamplingOptions {
   double density_floor = 0.1;
   // expected_loss: move keyframes by the loss they cause and rank them by it (needs every frame's envelope).
   bool refine_by_loss = true;
-  double raster_cell_m = 0.08;   // grid cell of the loss estimate (grown on large plans, see envelope_raster.h)
+  double raster_cell_m =
+      0.08;  // grid cell of the loss estimate (grown on large plans, see envelope_raster.h)
   int refine_sweeps = 6;
 
   void check() const;  // throws plenopath::Error saying which field is wrong

@@ -25,7 +25,8 @@ WalkNavigator::WalkNavigator(const CameraPath& path, const Keyframes& keyframes,
     keyframes_.push_back({frame, s_[i], it->position(), it->heading});
   }
   if (keyframes_.empty()) throw Error("walk: no keyframe has a pose in the path (run sampling first)");
-  std::sort(keyframes_.begin(), keyframes_.end(), [](const WalkKeyframe& a, const WalkKeyframe& b) { return a.s < b.s; });
+  std::sort(keyframes_.begin(), keyframes_.end(),
+            [](const WalkKeyframe& a, const WalkKeyframe& b) { return a.s < b.s; });
   s_now_ = keyframes_.front().s;
   yaw_ = keyframes_.front().heading;
   current_ = previous_ = 0;
@@ -103,7 +104,8 @@ void WalkNavigator::walk_to(double s) {
   from_ = s_now_;
   to_ = s;
   t_ = 0.0;
-  duration_ = std::clamp(std::abs(to_ - from_) / options_.speed_m_per_s, options_.min_step_s, options_.max_step_s);
+  duration_ =
+      std::clamp(std::abs(to_ - from_) / options_.speed_m_per_s, options_.min_step_s, options_.max_step_s);
   moving_ = true;
 }
 

@@ -18,10 +18,10 @@ struct WalkKeyframe {
 };
 
 struct WalkOptions {
-  double speed_m_per_s = 1.6;   // animation speed between keyframes
-  double min_step_s = 0.2;      // shortest animation, seconds
-  double max_step_s = 0.9;      // longest animation, seconds
-  double fade_s = 0.35;         // cross-fade between keyframe images
+  double speed_m_per_s = 1.6;  // animation speed between keyframes
+  double min_step_s = 0.2;     // shortest animation, seconds
+  double max_step_s = 0.9;     // longest animation, seconds
+  double fade_s = 0.35;        // cross-fade between keyframe images
   void check() const;
 };
 

@@ -1,7 +1,7 @@
 // Drift-anchor benchmark: how fast the map's drag preview (preview_path_with_anchors) and the global
-// refinement (refine_path_with_anchors) are, on the office sample's whole walk (231 m, 2 888 frames) and on the same
-// walk sampled 10x finer (28 877 frames). Drift (heading bias + scale) is injected into the truth; the
-// anchors sit on ground-truth positions. Also a refinement cut short (2 or 5 solver iterations), the
+// refinement (refine_path_with_anchors) are, on the office sample's whole walk (231 m, 2 888 frames) and on
+// the same walk sampled 10x finer (28 877 frames). Drift (heading bias + scale) is injected into the truth;
+// the anchors sit on ground-truth positions. Also a refinement cut short (2 or 5 solver iterations), the
 // alternative drag preview: it is neither fast nor close (why the map previews with the warp). Prints one
 // JSON object.
 #include <algorithm>
@@ -41,7 +41,8 @@ Anchors anchors_at(const CameraPath& truth, int count) {
   Anchors anchors;
   const std::size_t n = truth.size();
   for (int k = 0; k < count; ++k) {
-    const std::size_t i = count == 1 ? 0 : (n - 1) * static_cast<std::size_t>(k) / static_cast<std::size_t>(count - 1);
+    const std::size_t i =
+        count == 1 ? 0 : (n - 1) * static_cast<std::size_t>(k) / static_cast<std::size_t>(count - 1);
     anchors.push_back({truth.frames[i].index, truth.frames[i].position(), std::nullopt});
   }
   return anchors;

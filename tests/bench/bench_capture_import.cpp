@@ -1,6 +1,8 @@
 // Capture import speed: scanning a large image folder (headers only, and decoding everything), full and
 // thumbnail decoding of JPEG frames, and an H.264 MP4's sequential decoding and random seeks (alone and
 // through the frame cache with prefetch). Prints one JSON object.
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -10,7 +12,6 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <random>
-#include <unistd.h>
 
 #include "processing/frame_cache.h"
 #include "processing/frame_source.h"
@@ -20,7 +21,9 @@ using clock_type = std::chrono::steady_clock;
 
 namespace {
 
-double seconds_since(clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); }
+double seconds_since(clock_type::time_point t) {
+  return std::chrono::duration<double>(clock_type::now() - t).count();
+}
 
 cv::Mat textured_frame(int width, int height, int number) {
   cv::Mat frame(height, width, CV_8UC3);
@@ -46,8 +49,8 @@ int main() {
   for (int i = 0; i < kFiles; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.jpg", i);
-    std::ofstream(dir / "folder" / name, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
-                                                                  static_cast<std::streamsize>(jpeg.size()));
+    std::ofstream(dir / "folder" / name, std::ios::binary)
+        .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
   }
   auto t = clock_type::now();
   std::unique_ptr<FrameSource> folder = FrameSource::open((dir / "folder").string());

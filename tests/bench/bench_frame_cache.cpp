@@ -2,10 +2,11 @@
 // frame cache: forward playback with prefetch, backward scrubbing, random jumps, timeline thumbnails.
 // Prints one JSON object: the cache's byte bound, its peak, and the process's peak resident memory
 // (VmHWM) before and after, so memory is seen to stay bounded however long the capture is.
+#include <malloc.h>
+
 #include <chrono>
 #include <fstream>
 #include <iostream>
-#include <malloc.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -46,7 +47,8 @@ int main() {
   const std::size_t frame_bytes = std::size_t(kWidth) * kHeight * 3;
 
   // Frames go straight to mmap and back to the OS when evicted; without this glibc raises its mmap
-  // threshold after the first frees and keeps freed frames in its heaps (the studio's main() should do the same).
+  // threshold after the first frees and keeps freed frames in its heaps (the studio's main() should do the
+  // same).
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
   const std::size_t rss_start = resident_bytes();
   const std::size_t hwm_start = peak_resident_bytes();
@@ -55,7 +57,8 @@ int main() {
       kFrames, kWidth, kHeight, 30.0,
       [&](int i) {
         cv::Mat frame(kHeight, kWidth, CV_8UC3, cv::Scalar(i % 251, (i / 7) % 253, (i / 49) % 255));
-        cv::rectangle(frame, cv::Rect((i * 16) % kWidth, 0, 16, kHeight), cv::Scalar(255, 255, 255), cv::FILLED);
+        cv::rectangle(frame, cv::Rect((i * 16) % kWidth, 0, 16, kHeight), cv::Scalar(255, 255, 255),
+                      cv::FILLED);
         return frame;
       },
       "synthetic 100000-frame capture");
@@ -79,16 +82,16 @@ int main() {
     ++accesses;
   };
   const auto t_scrub = clock::now();
-  for (int i = 0; i < 400; ++i) touch(i, +1);                        // playback from the start
-  for (int i = 400; i > 200; --i) touch(i, -1);                      // scrub back
+  for (int i = 0; i < 400; ++i) touch(i, +1);    // playback from the start
+  for (int i = 400; i > 200; --i) touch(i, -1);  // scrub back
   std::mt19937 random(42);
   std::uniform_int_distribution<int> anywhere(0, kFrames - 1);
-  for (int jump = 0; jump < 20; ++jump) {                            // jumps across the timeline
+  for (int jump = 0; jump < 20; ++jump) {  // jumps across the timeline
     const int at = anywhere(random);
     for (int k = 0; k < 10 && at + k < kFrames; ++k) touch(at + k, +1);
   }
-  for (int i = kFrames - 200; i < kFrames; ++i) touch(i, +1);        // the end of the capture
-  for (int i = 0; i < kFrames; i += kFrames / 400) {                 // a timeline strip of 400 thumbnails
+  for (int i = kFrames - 200; i < kFrames; ++i) touch(i, +1);  // the end of the capture
+  for (int i = 0; i < kFrames; i += kFrames / 400) {           // a timeline strip of 400 thumbnails
     sum += cache.thumbnail(i).data[0];
   }
   cache.wait_for_prefetch();
@@ -98,7 +101,8 @@ int main() {
 
   // What the bound promises, beyond the frame index: the cache's frames and thumbnails plus a few frames
   // in flight (the worker's and the caller's decodes, the caller's copy) and allocator slack.
-  const std::size_t allowed = options.frame_bytes_bound + options.thumbnail_bytes_bound + 4 * frame_bytes + (std::size_t(8) << 20);
+  const std::size_t allowed =
+      options.frame_bytes_bound + options.thumbnail_bytes_bound + 4 * frame_bytes + (std::size_t(8) << 20);
   const std::size_t growth = hwm_end > rss_open ? hwm_end - rss_open : 0;
   nlohmann::json result = {
       {"benchmark", "frame_cache"},

@@ -27,7 +27,9 @@ namespace {
 
 using test::add_wall;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // A random office: a grid of rooms of random sizes, every inner wall with a 1 m door at a random place,
 // and a few pillars.
@@ -65,8 +67,8 @@ FloorPlan random_plan(std::mt19937* rng) {
       const Eigen::Vector2d c(xs[i] + (0.3 + 0.4 * unit(*rng)) * (xs[i + 1] - xs[i]),
                               ys[j] + (0.3 + 0.4 * unit(*rng)) * (ys[j + 1] - ys[j]));
       const double h = 0.2;
-      const Eigen::Vector2d p[4] = {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h), c + Eigen::Vector2d(h, h),
-                                    c + Eigen::Vector2d(-h, h)};
+      const Eigen::Vector2d p[4] = {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
+                                    c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)};
       for (int k = 0; k < 4; ++k) add_wall(&plan, p[k], p[(k + 1) % 4]);
     }
   return plan;
@@ -91,7 +93,10 @@ Scene make_scene(const FloorPlan& plan, double step) {
 }
 
 nlohmann::json loss_json(const GeometricLoss& loss) {
-  return {{"mean", loss.mean}, {"p95", loss.p95}, {"max", loss.max}, {"evaluated", loss.evaluated},
+  return {{"mean", loss.mean},
+          {"p95", loss.p95},
+          {"max", loss.max},
+          {"evaluated", loss.evaluated},
           {"inexact", loss.inexact}};
 }
 
@@ -105,12 +110,9 @@ int main(int argc, char** argv) {
   const FloorPlan plan = make_office_sample_plan();
   const double step = 0.04;
   Scene office = make_scene(plan, step);
-  out["ground_truth"] = {{"plan", "make_office_sample_plan"},
-                         {"walk", "auto_walk, step 0.04 m"},
-                         {"frames", office.path.size()},
-                         {"length_m", office.path.length()},
-                         {"cells", office.cells.cells.size()},
-                         {"setup_s", seconds_since(t0)}};
+  out["ground_truth"] = {{"plan", "make_office_sample_plan"},  {"walk", "auto_walk, step 0.04 m"},
+                         {"frames", office.path.size()},       {"length_m", office.path.length()},
+                         {"cells", office.cells.cells.size()}, {"setup_s", seconds_since(t0)}};
 
   // Depth volumes from the renderer (no plan used by the depth sampler itself).
   const auto t_depth = Clock::now();
@@ -136,7 +138,9 @@ int main(int argc, char** argv) {
   inputs.depth_volumes = &volumes;
   inputs.depth_envelopes = &depth_envelopes;
   inputs.envelopes = &office.envelopes;
-  if (quick && argc > 3) inputs.visibility.refine_sweeps = std::atoi(argv[2]), inputs.visibility.raster_cell_m = std::atof(argv[3]);
+  if (quick && argc > 3)
+    inputs.visibility.refine_sweeps = std::atoi(argv[2]),
+    inputs.visibility.raster_cell_m = std::atof(argv[3]);
   const EnvelopeRaster raster(office.envelopes, inputs.visibility.raster_cell_m);
   inputs.raster = &raster;
 
@@ -273,7 +277,8 @@ int main(int argc, char** argv) {
         relative += j[boost][e].get<double>() / j["uniform"].get<double>() / random_plans;
       }
       summary[boost]["random_mean_over_uniform"][e] = relative;
-      const double office_relative = office_value.get<double>() / exponent_sweep["office"]["uniform"].get<double>();
+      const double office_relative =
+          office_value.get<double>() / exponent_sweep["office"]["uniform"].get<double>();
       summary[boost]["office_over_uniform"][e] = office_relative;
       if (office_relative < best_office_value) best_office_value = office_relative, best_office = e;
       if (relative < best_random_value) best_random_value = relative, best_random = e;

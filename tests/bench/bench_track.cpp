@@ -7,8 +7,9 @@
 // 1024x512 rendered on the fly through FrameSource::from_generator: the walk there and back, with turns on
 // the spot) that checks time and memory scale. PLENOPATH_BENCH_QUICK=1 leaves out the 2048 and long runs.
 // Usage: bench_track [--frames N] [--width W] [--noise] [--long [--walk N]] [--no-loop] [--global-limit N]
-// [--only]  (--only: just that one run; --walk: the long run turns back after N frames of the walk; --no-loop:
-// without loop closure; --global-limit: RefinementOptions::global_max_observations, 0 = no thinning)
+// [--only]  (--only: just that one run; --walk: the long run turns back after N frames of the walk;
+// --no-loop: without loop closure; --global-limit: RefinementOptions::global_max_observations, 0 = no
+// thinning)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -85,7 +86,8 @@ double heading_rms_deg(const std::vector<double>& estimate, const CameraPath& tr
   }
   const double offset = std::atan2(sy, sx);
   double s2 = 0;
-  for (size_t i = 0; i < estimate.size(); ++i) s2 += std::pow(wrap_angle(estimate[i] + offset - truth.frames[i].heading), 2);
+  for (size_t i = 0; i < estimate.size(); ++i)
+    s2 += std::pow(wrap_angle(estimate[i] + offset - truth.frames[i].heading), 2);
   return degrees(std::sqrt(s2 / estimate.size()));
 }
 
@@ -95,7 +97,8 @@ nlohmann::json run(const RunSpec& spec) {
   const SyntheticScene scene = build_synthetic_scene(plan, scene_options);
   AutoWalkOptions walk;
   walk.max_frames = spec.long_walk ? spec.walk_frames : spec.frames;
-  const CameraPath truth = spec.long_walk ? there_and_back(auto_walk(plan, walk), spec.frames) : auto_walk(plan, walk);
+  const CameraPath truth =
+      spec.long_walk ? there_and_back(auto_walk(plan, walk), spec.frames) : auto_walk(plan, walk);
   RenderOptions render;
   render.width = spec.width;
   render.height = spec.width / 2;
@@ -119,8 +122,9 @@ nlohmann::json run(const RunSpec& spec) {
   std::vector<std::vector<unsigned char>> jpegs;
   std::unique_ptr<FrameSource> generated;
   if (spec.long_walk) {
-    generated = FrameSource::from_generator(static_cast<int>(truth.size()), render.width, render.height, 30.0,
-                                            [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; });
+    generated = FrameSource::from_generator(
+        static_cast<int>(truth.size()), render.width, render.height, 30.0,
+        [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; });
   } else {
     const auto t_render = std::chrono::steady_clock::now();
     jpegs.resize(truth.size());
@@ -133,15 +137,20 @@ nlohmann::json run(const RunSpec& spec) {
   const double rss_before_mb = peak_rss_mb();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::pair<std::string, double>> stage_seconds;  // stage, when it started (from t0)
-  const EgomotionResult r = EgomotionTracker::run(static_cast<int>(truth.size()), [&](int i) {
-    const auto t = std::chrono::steady_clock::now();
-    cv::Mat m = generated ? generated->read(i) : cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
-    (generated ? render_s : decode_s) += seconds(t);
-    return m;
-  }, options, [&](const std::string& stage, double) {
-    if (stage_seconds.empty() || stage_seconds.back().first != stage) stage_seconds.emplace_back(stage, seconds(t0));
-    return true;
-  });
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(truth.size()),
+      [&](int i) {
+        const auto t = std::chrono::steady_clock::now();
+        cv::Mat m = generated ? generated->read(i) : cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
+        (generated ? render_s : decode_s) += seconds(t);
+        return m;
+      },
+      options,
+      [&](const std::string& stage, double) {
+        if (stage_seconds.empty() || stage_seconds.back().first != stage)
+          stage_seconds.emplace_back(stage, seconds(t0));
+        return true;
+      });
   const double total_s = seconds(t0);
   // Seconds spent in each stage of finish() (the frames stage includes decoding; see seconds_frames_stage).
   nlohmann::json geometry_stages;
@@ -157,7 +166,8 @@ nlohmann::json run(const RunSpec& spec) {
       std::cerr << i << " truth " << truth.frames[i].x << " " << truth.frames[i].y << " "
                 << degrees(truth.frames[i].heading) << " ring " << degrees(r.ring_headings[i]) << " est "
                 << r.path.frames[i].x << " " << r.path.frames[i].y << " " << degrees(r.path.frames[i].heading)
-                << " kf " << std::count(r.keyframes.begin(), r.keyframes.end(), int(i)) << " flags " << r.path.frames[i].flags << " " << r.path.frames[i].reason << "\n";
+                << " kf " << std::count(r.keyframes.begin(), r.keyframes.end(), int(i)) << " flags "
+                << r.path.frames[i].flags << " " << r.path.frames[i].reason << "\n";
   }
   CameraPath coarse = r.path;
   for (size_t i = 0; i < coarse.frames.size(); ++i) {
@@ -216,14 +226,22 @@ int main(int argc, char** argv) {
   RunSpec spec;
   bool only = false;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) spec.frames = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) spec.width = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--noise")) spec.noise = true;
-    else if (!std::strcmp(argv[i], "--long")) spec.long_walk = true;
-    else if (!std::strcmp(argv[i], "--walk") && i + 1 < argc) spec.walk_frames = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--only")) only = true;
-    else if (!std::strcmp(argv[i], "--no-loop")) spec.loop_closure = false;
-    else if (!std::strcmp(argv[i], "--global-limit") && i + 1 < argc) spec.global_limit = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+      spec.frames = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--width") && i + 1 < argc)
+      spec.width = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--noise"))
+      spec.noise = true;
+    else if (!std::strcmp(argv[i], "--long"))
+      spec.long_walk = true;
+    else if (!std::strcmp(argv[i], "--walk") && i + 1 < argc)
+      spec.walk_frames = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--only"))
+      only = true;
+    else if (!std::strcmp(argv[i], "--no-loop"))
+      spec.loop_closure = false;
+    else if (!std::strcmp(argv[i], "--global-limit") && i + 1 < argc)
+      spec.global_limit = std::atoi(argv[++i]);
   }
   nlohmann::json out;
   out["benchmark"] = "track";

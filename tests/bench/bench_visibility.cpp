@@ -7,10 +7,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
-#include <iostream>
 #include <cstring>
+#include <ctime>
+#include <iostream>
 #include <random>
 
 #include "processing/visibility.h"
@@ -89,7 +89,8 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-std::vector<double> time_queries(const VisibilityIndex& index, const std::vector<Eigen::Vector2d>& points, double* area_sum) {
+std::vector<double> time_queries(const VisibilityIndex& index, const std::vector<Eigen::Vector2d>& points,
+                                 double* area_sum) {
   index.envelope(points.front());  // per-thread setup outside the timing
   std::vector<double> us;
   *area_sum = 0.0;
@@ -102,10 +103,10 @@ std::vector<double> time_queries(const VisibilityIndex& index, const std::vector
   return us;
 }
 
-
 CameraPath polyline_path(const std::vector<Eigen::Vector2d>& corners, int frames) {
   std::vector<double> cum = {0.0};
-  for (std::size_t i = 1; i < corners.size(); ++i) cum.push_back(cum.back() + (corners[i] - corners[i - 1]).norm());
+  for (std::size_t i = 1; i < corners.size(); ++i)
+    cum.push_back(cum.back() + (corners[i] - corners[i - 1]).norm());
   CameraPath path;
   for (int f = 0; f < frames; ++f) {
     const double s = cum.back() * f / (frames - 1);
@@ -122,7 +123,8 @@ CameraPath polyline_path(const std::vector<Eigen::Vector2d>& corners, int frames
   return path;
 }
 
-std::vector<Eigen::Vector2d> free_points(const VisibilityIndex& index, std::mt19937* rng, Eigen::Vector2d hi, int n) {
+std::vector<Eigen::Vector2d> free_points(const VisibilityIndex& index, std::mt19937* rng, Eigen::Vector2d hi,
+                                         int n) {
   std::uniform_real_distribution<double> ux(0.1, hi.x() - 0.1), uy(0.1, hi.y() - 0.1);
   std::vector<Eigen::Vector2d> points;
   while (static_cast<int>(points.size()) < n) {
@@ -219,8 +221,8 @@ int main(int argc, char** argv) {
   const double hall_cells_cpu_s = static_cast<double>(std::clock() - hc0) / CLOCKS_PER_SEC;
 
   // 10 000 frames: along the corridor and back, then into and out of a room.
-  const CameraPath path = polyline_path({{1, 20.5}, {119, 20.5}, {119, 19.5}, {61.5, 19.5}, {61.5, 12}, {61.5, 19.5},
-                                         {1, 19.5}}, 10000);
+  const CameraPath path = polyline_path(
+      {{1, 20.5}, {119, 20.5}, {119, 19.5}, {61.5, 19.5}, {61.5, 12}, {61.5, 19.5}, {1, 19.5}}, 10000);
   VisibilityOptions events_only_options;
   events_only_options.cell_areas = false;
   const VisibilityIndex events_only(plan, events_only_options);
@@ -247,14 +249,17 @@ int main(int argc, char** argv) {
     std::size_t i = std::upper_bound(s_at.begin(), s_at.end(), s) - s_at.begin();
     i = std::clamp<std::size_t>(i, 1, s_at.size() - 1);
     const double t = (s - s_at[i - 1]) / std::max(1e-300, s_at[i] - s_at[i - 1]);
-    return Eigen::Vector2d(path.frames[i - 1].position() + t * (path.frames[i].position() - path.frames[i - 1].position()));
+    return Eigen::Vector2d(path.frames[i - 1].position() +
+                           t * (path.frames[i].position() - path.frames[i - 1].position()));
   };
   double mid_max_rel = 0.0, mean_max_rel = 0.0, mean_vs_mid_max_rel = 0.0;
   for (std::size_t c = 0; c < cells.cells.size(); c += 10) {
     const auto& cell = cells.cells[c];
     const double truth = exact.envelope_area(point_at(0.5 * (cell.s_begin + cell.s_end)));
     if (truth > 0) mid_max_rel = std::max(mid_max_rel, std::abs(cell.area_mid - truth) / truth);
-    if (cell.area_mid > 0) mean_vs_mid_max_rel = std::max(mean_vs_mid_max_rel, std::abs(cell.area_mean - cell.area_mid) / cell.area_mid);
+    if (cell.area_mid > 0)
+      mean_vs_mid_max_rel =
+          std::max(mean_vs_mid_max_rel, std::abs(cell.area_mean - cell.area_mid) / cell.area_mid);
     if (c % 100 != 0) continue;
     double simpson = 0.0;
     for (int k = 0; k <= 16; ++k)
@@ -276,16 +281,22 @@ int main(int argc, char** argv) {
             << ", \"arrangement_vertices\": " << tri.vertices().size() << ", \"build_s\": " << build_s
             << ", \"envelope_median_cpu_us\": {\"triangular_expansion\": " << tri_us
             << ", \"rotational_sweep\": " << sweep_us << "}"
-            << ", \"winner\": \"" << (tri_us <= sweep_us ? "triangular_expansion" : "rotational_sweep") << "\""
+            << ", \"winner\": \"" << (tri_us <= sweep_us ? "triangular_expansion" : "rotational_sweep")
+            << "\""
             << ", \"speedup\": " << std::max(tri_us, sweep_us) / std::min(tri_us, sweep_us)
-            << ", \"areas_agree\": " << (std::abs(tri_few_area - sweep_area) <= 1e-6 * tri_few_area ? "true" : "false")
-            << ", \"envelope_target_us\": 300, \"envelope_target_met\": " << (tri_us <= 300 ? "true" : "false")
-            << ", \"corridor_envelope_median_cpu_us\": " << corridor_us
+            << ", \"areas_agree\": "
+            << (std::abs(tri_few_area - sweep_area) <= 1e-6 * tri_few_area ? "true" : "false")
+            << ", \"envelope_target_us\": 300, \"envelope_target_met\": "
+            << (tri_us <= 300 ? "true" : "false") << ", \"corridor_envelope_median_cpu_us\": " << corridor_us
             << ", \"corridor_area_only_median_cpu_us\": " << corridor_area_only_us
- << ", \"corridor_exact_area_median_cpu_us\": " << corridor_exact_area_us
-            << ", \"area_only_agrees\": " << (std::abs(area_only_sum - corridor_area) <= 1e-6 * corridor_area &&
-                                         std::abs(exact_area_sum - corridor_area) <= 1e-6 * corridor_area ? "true" : "false")
-            << ", \"fast_area_median_cpu_us\": " << median(fast_us) << ", \"fast_area_max_rel_diff_vs_exact\": " << fast_max_rel
+            << ", \"corridor_exact_area_median_cpu_us\": " << corridor_exact_area_us
+            << ", \"area_only_agrees\": "
+            << (std::abs(area_only_sum - corridor_area) <= 1e-6 * corridor_area &&
+                        std::abs(exact_area_sum - corridor_area) <= 1e-6 * corridor_area
+                    ? "true"
+                    : "false")
+            << ", \"fast_area_median_cpu_us\": " << median(fast_us)
+            << ", \"fast_area_max_rel_diff_vs_exact\": " << fast_max_rel
             << ", \"pillar_hall\": {\"segments\": " << hall_plan.segments.size()
             << ", \"envelope_median_cpu_us\": " << hall_us
             << ", \"fast_area_median_cpu_us\": " << median(hall_fast_us)
@@ -300,12 +311,15 @@ int main(int argc, char** argv) {
             << ", \"area_mid_max_rel_diff_vs_exact\": " << mid_max_rel
             << ", \"area_mean_max_rel_diff_vs_exact_simpson16\": " << mean_max_rel
             << ", \"area_mean_vs_mid_max_rel\": " << mean_vs_mid_max_rel
-            << ", \"repeatable\": " << (repeatable ? "true" : "false") << ", \"events_without_areas_wall_s\": " << events_only_s
+            << ", \"repeatable\": " << (repeatable ? "true" : "false")
+            << ", \"events_without_areas_wall_s\": " << events_only_s
             << ", \"events_without_areas_cpu_s\": " << events_only_cpu_s
             << ", \"same_events\": " << (same_events(events_only_cells, cells) ? "true" : "false")
-            << ", \"events_target_s\": 2, \"events_target_met_with_areas\": " << (events_s <= 2.0 ? "true" : "false")
+            << ", \"events_target_s\": 2, \"events_target_met_with_areas\": "
+            << (events_s <= 2.0 ? "true" : "false")
             << ", \"events_target_met_without_areas\": " << (events_only_s <= 2.0 ? "true" : "false");
-  if (with_exact) std::cout << ", \"exact_method_wall_s\": " << exact_s << ", \"exact_method_cpu_s\": " << exact_cpu_s;
+  if (with_exact)
+    std::cout << ", \"exact_method_wall_s\": " << exact_s << ", \"exact_method_cpu_s\": " << exact_cpu_s;
   std::cout << "}\n";
   return 0;
 }

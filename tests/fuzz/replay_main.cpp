@@ -3,9 +3,9 @@
 // the libFuzzer target, until an iteration count or a time budget runs out.
 // Usage: fuzz_dxf_replay SEED_DIR [ITERATIONS] [SECONDS] [RANDOM_SEED]
 #include <chrono>
-#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -23,13 +23,34 @@ int run(const std::string& bytes) {
 }
 
 std::string mutate(std::string s, const std::vector<std::string>& corpus, std::mt19937_64& rng) {
-  static const std::vector<std::string> tokens = {
-      "0\n",       "\n0\nINSERT\n2\nB\n", "\n0\nBLOCK\n2\nB\n", "\n0\nENDBLK\n", "\n0\nLWPOLYLINE\n90\n",
-      "\n42\n",    "1e308",               "-1e308",             "nan",           "999999",
-      "-999999",   "\n0\nEOF\n",          "\n0\nSECTION\n",     "\n0\nENDSEC\n", "\n70\n",
-      "\n0\nSPLINE\n71\n", "\n41\n0\n",   "\n230\n-1\n",        "\r\n",          "\n0\nVERTEX\n",
-      "\n0\nSEQEND\n", "\n50\n90\n",      "\n44\n1e-300\n",     "\n71\n1000\n",  "\n0\nPOLYLINE\n"};
-  auto pos = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % (n + 1)); };
+  static const std::vector<std::string> tokens = {"0\n",
+                                                  "\n0\nINSERT\n2\nB\n",
+                                                  "\n0\nBLOCK\n2\nB\n",
+                                                  "\n0\nENDBLK\n",
+                                                  "\n0\nLWPOLYLINE\n90\n",
+                                                  "\n42\n",
+                                                  "1e308",
+                                                  "-1e308",
+                                                  "nan",
+                                                  "999999",
+                                                  "-999999",
+                                                  "\n0\nEOF\n",
+                                                  "\n0\nSECTION\n",
+                                                  "\n0\nENDSEC\n",
+                                                  "\n70\n",
+                                                  "\n0\nSPLINE\n71\n",
+                                                  "\n41\n0\n",
+                                                  "\n230\n-1\n",
+                                                  "\r\n",
+                                                  "\n0\nVERTEX\n",
+                                                  "\n0\nSEQEND\n",
+                                                  "\n50\n90\n",
+                                                  "\n44\n1e-300\n",
+                                                  "\n71\n1000\n",
+                                                  "\n0\nPOLYLINE\n"};
+  auto pos = [&](std::size_t n) {
+    return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % (n + 1));
+  };
   const int edits = 1 + static_cast<int>(rng() % 4);
   for (int e = 0; e < edits; ++e) {
     switch (rng() % 8) {
@@ -111,7 +132,8 @@ int main(int argc, char** argv) {
       if (const char* keep = std::getenv("FUZZ_KEEP_SLOWEST")) std::ofstream(keep, std::ios::binary) << input;
     }
   }
-  std::cout << "{\"seeds\": " << corpus.size() << ", \"mutated_inputs\": " << done << ", \"slowest_input_s\": " << slowest << ", \"seconds\": "
+  std::cout << "{\"seeds\": " << corpus.size() << ", \"mutated_inputs\": " << done
+            << ", \"slowest_input_s\": " << slowest << ", \"seconds\": "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << "}\n";
   return 0;
 }

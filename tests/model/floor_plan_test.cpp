@@ -1,6 +1,7 @@
+#include "model/floor_plan.h"
+
 #include <gtest/gtest.h>
 
-#include "model/floor_plan.h"
 #include "model/geo_anchor.h"
 #include "model/keyframes.h"
 

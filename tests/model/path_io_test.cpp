@@ -1,3 +1,5 @@
+#include "model/path_io.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -5,7 +7,6 @@
 #include <fstream>
 
 #include "model/error.h"
-#include "model/path_io.h"
 
 namespace plenopath {
 namespace {
@@ -79,7 +80,8 @@ TEST(PathIo, ErrorsNameFileAndField) {
     read_path_file(f);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.json: /frames/0: missing field 'heading_deg'"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("bad.json: /frames/0: missing field 'heading_deg'"),
+              std::string::npos)
         << e.what();
   }
   fs::remove(f);

@@ -1,14 +1,15 @@
+#include "model/project_io.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <unistd.h>
 
 #include "model/error.h"
 #include "model/json_reader.h"
-#include "model/project_io.h"
 
 namespace plenopath {
 namespace {
@@ -18,8 +19,8 @@ class ProjectIoTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("plenopath_project_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+           ("plenopath_project_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -36,7 +37,8 @@ Project make_full_project(const fs::path& dir) {
   p.plan.units = "mm";
   p.plan.metres_per_unit = 0.001;
   p.plan.layers = {{"WALLS", 7, true, true, 12}, {"FURNITURE", 3, false, false, 4}};
-  p.plan.segments = {{{0.0, 0.0}, {5.25, 0.0}, "WALLS", true}, {{1e-3, -2.5}, {1.0 / 3.0, 7.0}, "FURNITURE", false}};
+  p.plan.segments = {{{0.0, 0.0}, {5.25, 0.0}, "WALLS", true},
+                     {{1e-3, -2.5}, {1.0 / 3.0, 7.0}, "FURNITURE", false}};
   p.plan.outlines = {{{{0, 0}, {1, 0}, {1, 1}}, "COLUMNS", true}};
   p.plan.labels = {{{2.5, 3.5}, "Salle de réunion ✓", 0.25, "TEXT"}};
   p.capture.kind = CaptureKind::kImageFolder;
@@ -222,9 +224,10 @@ TEST_F(ProjectIoTest, NewerVersionIsRefusedClearly) {
 }
 
 TEST_F(ProjectIoTest, MissingFieldNamesItsJsonPath) {
-  write("m.plenopath",
-        R"({"format":"plenopath-project","version":1,"path":{"frames":[{"index":0,"x":1,"y":2,"heading_deg":0},)"
-        R"({"index":1,"x":1,"heading_deg":0}]}})");
+  write(
+      "m.plenopath",
+      R"({"format":"plenopath-project","version":1,"path":{"frames":[{"index":0,"x":1,"y":2,"heading_deg":0},)"
+      R"({"index":1,"x":1,"heading_deg":0}]}})");
   const std::string e = error_of(file("m.plenopath"));
   EXPECT_NE(e.find("m.plenopath: /path/frames/1: missing field 'y'"), std::string::npos) << e;
 }
@@ -261,9 +264,10 @@ TEST_F(ProjectIoTest, InvalidValuesAreRejected) {
   write("k.plenopath", R"({"format":"plenopath-project","version":1,"capture":{"kind":"hologram"}})");
   EXPECT_NE(error_of(file("k.plenopath")).find("/capture/kind: unknown capture kind 'hologram'"),
             std::string::npos);
-  write("d.plenopath",
-        R"({"format":"plenopath-project","version":1,"path":{"frames":[{"index":3,"x":0,"y":0,"heading_deg":0},)"
-        R"({"index":3,"x":1,"y":0,"heading_deg":0}]}})");
+  write(
+      "d.plenopath",
+      R"({"format":"plenopath-project","version":1,"path":{"frames":[{"index":3,"x":0,"y":0,"heading_deg":0},)"
+      R"({"index":3,"x":1,"y":0,"heading_deg":0}]}})");
   EXPECT_NE(error_of(file("d.plenopath")).find("duplicate frame index 3"), std::string::npos);
   write("q.plenopath", R"({"format":"plenopath-project","version":1,"tour":{"jpeg_quality":400}})");
   EXPECT_NE(error_of(file("q.plenopath")).find("/tour/jpeg_quality"), std::string::npos);

@@ -81,8 +81,8 @@ TEST(CaptureRenderedVideo, RenderedWalkImportsFromH264WithDepth) {
     cv::minMaxLoc(error, nullptr, &worst);
     EXPECT_LT(worst, 0.0006) << "depth of frame " << i;  // rounding to whole millimetres
   }
-  std::cout << "decoded vs own render: worst mean |diff| " << worst_own << " grey levels; vs another frame's render: "
-            << closest_other << " at least\n";
+  std::cout << "decoded vs own render: worst mean |diff| " << worst_own
+            << " grey levels; vs another frame's render: " << closest_other << " at least\n";
 }
 
 }  // namespace

@@ -31,9 +31,15 @@ TEST(CaptureRobustness, MutatedGpxParsesOrThrowsError) {
     for (int e = 0; e < edits; ++e) {
       const std::size_t at = random() % text.size();
       switch (random() % 3) {
-        case 0: text[at] = alphabet[random() % alphabet.size()]; break;
-        case 1: text.erase(at, 1 + random() % 8); break;
-        default: text.insert(at, 1, alphabet[random() % alphabet.size()]); break;
+        case 0:
+          text[at] = alphabet[random() % alphabet.size()];
+          break;
+        case 1:
+          text.erase(at, 1 + random() % 8);
+          break;
+        default:
+          text.insert(at, 1, alphabet[random() % alphabet.size()]);
+          break;
       }
       if (text.empty()) text = "<";
     }
@@ -83,7 +89,8 @@ TEST(CaptureRobustness, TruncatedAndMutatedImagesNeverCrashTheHeaderCheck) {
       } else {
         for (int e = 0; e < 4; ++e) copy[random() % copy.size()] = static_cast<char>(random() % 256);
       }
-      std::ofstream(damaged, std::ios::binary | std::ios::trunc).write(copy.data(), static_cast<std::streamsize>(copy.size()));
+      std::ofstream(damaged, std::ios::binary | std::ios::trunc)
+          .write(copy.data(), static_cast<std::streamsize>(copy.size()));
       const ImageHeader h = read_image_header(damaged);  // must return, whatever the bytes
       if (h.ok) {
         EXPECT_GE(h.width, 0);

@@ -1,10 +1,11 @@
 // Depth volume against closed forms: a box room's ray lengths and volume, a sphere's mean range.
+#include "processing/depth_volume.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "model/error.h"
-#include "processing/depth_volume.h"
 #include "rig/spherical.h"
 
 namespace plenopath {

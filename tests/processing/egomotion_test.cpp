@@ -1,10 +1,11 @@
 // Egomotion stages against independent truth: the cost functor's derivatives (Ceres GradientChecker),
 // planar two-view geometry on synthetic bearings, KLT across the seam on exact rolls of a real panorama,
 // and the whole pipeline on a short render of the synthetic surround camera (ground-truth poses).
-#include <gtest/gtest.h>
+#include "processing/egomotion/egomotion.h"
 
-#include <ceres/gradient_checker.h>
 #include <ceres/ceres.h>
+#include <ceres/gradient_checker.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
@@ -13,7 +14,6 @@
 
 #include "model/error.h"
 #include "processing/egomotion/bearing_cost.h"
-#include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/klt_tracks.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/egomotion/planar_two_view.h"
@@ -92,7 +92,8 @@ TEST(KltTracks, FollowAnExactRollAcrossTheSeam) {
     if (shift == 0) {
       rolled = image.clone();
     } else {
-      cv::hconcat(image.colRange(image.cols - shift, image.cols), image.colRange(0, image.cols - shift), rolled);
+      cv::hconcat(image.colRange(image.cols - shift, image.cols), image.colRange(0, image.cols - shift),
+                  rolled);
     }
     tracker.add_frame(rolled);
   }
@@ -120,12 +121,13 @@ struct Walk {
 };
 // Renders `truth` frame by frame as the tracker asks (512 x 256 unless `render` says otherwise) and tracks it
 // with the camera-height scale (1.6 m, the scene's).
-EgomotionResult track_rendered(const SyntheticScene& scene, const CameraPath& truth, const RenderOptions& render) {
+EgomotionResult track_rendered(const SyntheticScene& scene, const CameraPath& truth,
+                               const RenderOptions& render) {
   EgomotionOptions options;
   options.camera_height_m = 1.6;
   return EgomotionTracker::run(
-      static_cast<int>(truth.size()), [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; },
-      options);
+      static_cast<int>(truth.size()),
+      [&](int i) { return render_panorama(scene, truth.frames[i], render).rgb; }, options);
 }
 
 RenderOptions small_render() {
@@ -190,7 +192,8 @@ TEST(Egomotion, SameInputGivesTheSameResultBitForBit) {
   EgomotionOptions options;
   options.camera_height_m = 1.6;
   auto track = [&] {
-    return EgomotionTracker::run(48, [&](int i) { return walk.frames[i]; }, options);
+    return EgomotionTracker::run(
+        48, [&](int i) { return walk.frames[i]; }, options);
   };
   const EgomotionResult first = track();
   const EgomotionResult second = track();
@@ -207,8 +210,8 @@ TEST(Egomotion, SameInputGivesTheSameResultBitForBit) {
     for (size_t i = 0; i < first.path.size(); ++i) {
       const PathFrame &a = first.path.frames[i], &b = other->path.frames[i];
       EXPECT_TRUE(a.x == b.x && a.y == b.y && a.heading == b.heading && a.flags == b.flags)
-          << "frame " << i << ": " << a.x << " " << a.y << " " << a.heading << " vs " << b.x << " " << b.y << " "
-          << b.heading;
+          << "frame " << i << ": " << a.x << " " << a.y << " " << a.heading << " vs " << b.x << " " << b.y
+          << " " << b.heading;
     }
   }
 }
@@ -227,7 +230,8 @@ TEST(Egomotion, NoiseAndMovingPeopleStayWithinTwoPercent) {
   render.people = 8;
   const EgomotionResult r = track_rendered(scene, truth, render);
   ASSERT_EQ(r.path.size(), truth.size());
-  for (const PathFrame& f : r.path.frames) ASSERT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.heading));
+  for (const PathFrame& f : r.path.frames)
+    ASSERT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.heading));
   const PathErrors e = evaluate_path(r.path, truth);
   EXPECT_EQ(e.frames_matched, 60);
   EXPECT_LT(e.ate_pct, 2.0);
@@ -287,8 +291,8 @@ TEST(Egomotion, StopsAndBlankFramesAreFlaggedNotSilentlyUsed) {
   frames[23] = blank;
   frames[24] = blank;
   EgomotionOptions options;
-  const EgomotionResult r =
-      EgomotionTracker::run(static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
   ASSERT_EQ(r.path.size(), frames.size());
   for (int i = 11; i <= 13; ++i) {
     EXPECT_TRUE(r.path.frames[i].flags & kFrameDuplicate) << i;
@@ -320,8 +324,8 @@ TEST(Egomotion, AMovingCrowdIsFlagged) {
   }
   EgomotionOptions options;
   options.camera_height_m = 1.6;
-  const EgomotionResult r =
-      EgomotionTracker::run(static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
   ASSERT_EQ(r.path.size(), frames.size());
   int flagged_inside = 0;
   for (int f = 0; f < static_cast<int>(frames.size()); ++f) {
@@ -348,7 +352,7 @@ TEST(Egomotion, BadOptionsAndInputsAreReported) {
   EXPECT_FALSE(options.check().empty());
   EXPECT_THROW(EgomotionTracker{options}, Error);
   EgomotionTracker tracker{EgomotionOptions{}};
-  EXPECT_THROW(tracker.finish(), Error);  // no frames
+  EXPECT_THROW(tracker.finish(), Error);                               // no frames
   EXPECT_THROW(tracker.add_frame(cv::Mat(100, 100, CV_8UC3)), Error);  // not 2:1
 }
 

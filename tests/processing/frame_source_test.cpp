@@ -29,8 +29,8 @@ TEST(NaturalSort, NumbersCompareByValue) {
   EXPECT_TRUE(natural_less("frame9.jpg", "frame10.jpg"));
   EXPECT_FALSE(natural_less("frame10.jpg", "frame9.jpg"));
   EXPECT_TRUE(natural_less("img2_b", "img10_a"));
-  EXPECT_TRUE(natural_less("a007", "a8"));          // leading zeros do not make a number bigger
-  EXPECT_TRUE(natural_less("Shot1", "shot2"));      // case does not matter
+  EXPECT_TRUE(natural_less("a007", "a8"));      // leading zeros do not make a number bigger
+  EXPECT_TRUE(natural_less("Shot1", "shot2"));  // case does not matter
   EXPECT_TRUE(natural_less("x99999999999999999999", "x100000000000000000000"));  // longer than 64 bits
   EXPECT_FALSE(natural_less("same", "same"));
 }
@@ -49,7 +49,8 @@ TEST(FrameSourceFolder, NaturalOrderWithOddNamesAndContent) {
   EXPECT_EQ(source->kind(), CaptureKind::kImageFolder);
   EXPECT_EQ(source->width(), 256);
   EXPECT_EQ(source->height(), 128);
-  const std::vector<std::string> expected = {"IMG 2.JPG", "IMG 9.png", "IMG 10.jpg", "IMG 11.jpeg", "IMG 100.tif"};
+  const std::vector<std::string> expected = {"IMG 2.JPG", "IMG 9.png", "IMG 10.jpg", "IMG 11.jpeg",
+                                             "IMG 100.tif"};
   const std::vector<int> numbers = {2, 9, 10, 11, 100};
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(source->frame_name(i), expected[i]);
@@ -81,7 +82,7 @@ TEST(FrameSourceFolder, CorruptAndMissingFramesAreSkippedAndListed) {
     std::filesystem::resize_file(path, size / 2);
   }
   std::ofstream(dir / "frame_0008.jpg") << "this is not a JPEG at all";  // frame 8: garbage
-  std::ofstream(dir / "frame_0009.jpg");                                   // frame 9: empty file
+  std::ofstream(dir / "frame_0009.jpg");                                 // frame 9: empty file
 
   auto source = FrameSource::open(dir.path().string());
   const std::vector<int> kept = {0, 1, 2, 3, 5, 7};
@@ -176,7 +177,8 @@ TEST(FrameSourceFolder, WrongAspectGivesAClearMessage) {
 
 TEST(FrameSourceFolder, FramesOfAnotherSizeAreSkipped) {
   TempFolder dir;
-  for (int k = 0; k < 4; ++k) ASSERT_TRUE(cv::imwrite(dir / ("f" + std::to_string(k) + ".png"), numbered_frame(k, 64, 32)));
+  for (int k = 0; k < 4; ++k)
+    ASSERT_TRUE(cv::imwrite(dir / ("f" + std::to_string(k) + ".png"), numbered_frame(k, 64, 32)));
   ASSERT_TRUE(cv::imwrite(dir / "f4.png", numbered_frame(4, 128, 64)));
   auto source = FrameSource::open(dir.path().string());
   EXPECT_EQ(source->frame_count(), 4);
@@ -230,8 +232,9 @@ TEST(FrameSourceFolder, DepthMapsMatchedByName) {
 
 // Writes `count` numbered frames with the given codec; false if this OpenCV cannot write it.
 bool write_video(const std::string& path, const char* fourcc, int count, double fps) {
-  cv::VideoWriter writer(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]),
-                         fps, cv::Size(256, 128));
+  cv::VideoWriter writer(path, cv::CAP_FFMPEG,
+                         cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]), fps,
+                         cv::Size(256, 128));
   if (!writer.isOpened()) return false;
   for (int k = 0; k < count; ++k) writer.write(numbered_frame(k));
   writer.release();
@@ -257,7 +260,8 @@ TEST_P(FrameSourceVideo, ImportsWithRightCountContentRangeAndSeeking) {
   EXPECT_EQ(source->height(), 128);
   EXPECT_NEAR(source->frame_rate(), 25.0, 1e-6);
   for (int i = 0; i < 40; ++i) ASSERT_EQ(decode_frame_number(source->read(i)), i) << "sequential frame " << i;
-  for (int i : {33, 2, 17, 18, 39, 0, 25}) EXPECT_EQ(decode_frame_number(source->read(i)), i) << "seek to " << i;
+  for (int i : {33, 2, 17, 18, 39, 0, 25})
+    EXPECT_EQ(decode_frame_number(source->read(i)), i) << "seek to " << i;
 
   FrameSourceOptions options;
   options.first_frame = 5;
@@ -281,7 +285,8 @@ TEST_P(FrameSourceVideo, ImportsWithRightCountContentRangeAndSeeking) {
 
 INSTANTIATE_TEST_SUITE_P(Codecs, FrameSourceVideo,
                          ::testing::Values(VideoCase{"MJPG", "capture.avi"}, VideoCase{"mp4v", "capture.mp4"},
-                                           VideoCase{"avc1", "capture_h264.mp4"}, VideoCase{"H264", "capture.mkv"},
+                                           VideoCase{"avc1", "capture_h264.mp4"},
+                                           VideoCase{"H264", "capture.mkv"},
                                            VideoCase{"mp4v", "capture.mov"}),
                          [](const auto& info) {
                            std::string n = info.param.file;
@@ -305,7 +310,8 @@ TEST(FrameSourceVideoErrors, BadVideosGiveErrorsNamingThem) {
 }
 
 TEST(FrameSourceGenerator, ServesGeneratedFrames) {
-  auto source = FrameSource::from_generator(1000, 64, 32, 10.0, [](int i) { return numbered_frame(i % 256, 64, 32); });
+  auto source =
+      FrameSource::from_generator(1000, 64, 32, 10.0, [](int i) { return numbered_frame(i % 256, 64, 32); });
   EXPECT_EQ(source->frame_count(), 1000);
   EXPECT_EQ(decode_frame_number(source->read(300)), 300 % 256);
   EXPECT_NEAR(source->timestamp_s(300), 30.0, 1e-12);

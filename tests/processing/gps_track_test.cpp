@@ -147,17 +147,21 @@ TEST(Gpx, GapsAreNotBridged) {
 TEST(Gpx, BadFilesGiveErrorsNamingFileAndLine) {
   EXPECT_NE(error_of([] { parse_gpx("<kml></kml>", "x.gpx"); }).find("not a GPX file"), std::string::npos);
   const std::string bad_lat = error_of([] {
-    parse_gpx("<gpx>\n<trk><trkseg>\n<trkpt lat=\"95\" lon=\"1\"><time>2024-01-01T00:00:00Z</time></trkpt>"
-              "</trkseg></trk></gpx>",
-              "bad.gpx");
+    parse_gpx(
+        "<gpx>\n<trk><trkseg>\n<trkpt lat=\"95\" lon=\"1\"><time>2024-01-01T00:00:00Z</time></trkpt>"
+        "</trkseg></trk></gpx>",
+        "bad.gpx");
   });
   EXPECT_NE(bad_lat.find("bad.gpx: line 3"), std::string::npos) << bad_lat;
   EXPECT_NE(bad_lat.find("latitude"), std::string::npos) << bad_lat;
-  const std::string truncated = error_of([] { parse_gpx("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\">", "t.gpx"); });
+  const std::string truncated =
+      error_of([] { parse_gpx("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\">", "t.gpx"); });
   EXPECT_NE(truncated.find("t.gpx"), std::string::npos) << truncated;
   EXPECT_NE(error_of([] { parse_gpx("<gpx></gpx>", "e.gpx"); }).find("no track points"), std::string::npos);
-  EXPECT_NE(error_of([] { read_gpx("/nonexistent/track.gpx"); }).find("/nonexistent/track.gpx"), std::string::npos);
-  const std::string no_time = error_of([] { parse_gpx("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"/></trkseg></trk></gpx>", "n.gpx"); });
+  EXPECT_NE(error_of([] { read_gpx("/nonexistent/track.gpx"); }).find("/nonexistent/track.gpx"),
+            std::string::npos);
+  const std::string no_time = error_of(
+      [] { parse_gpx("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"/></trkseg></trk></gpx>", "n.gpx"); });
   EXPECT_NE(no_time.find("no <time>"), std::string::npos) << no_time;
 }
 

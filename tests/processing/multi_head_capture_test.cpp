@@ -57,7 +57,8 @@ TEST(MultiHeadCapture, HeadFoldersAndRigFileImportAsStitchedFrames) {
   EXPECT_EQ(source->frame_name(2), "IMG_0103.png");
   ASSERT_EQ(source->skipped().size(), 1u);
   EXPECT_EQ(source->skipped()[0].name, "IMG_0102.png");
-  EXPECT_NE(source->skipped()[0].reason.find(rig.heads[3].name), std::string::npos) << source->skipped()[0].reason;
+  EXPECT_NE(source->skipped()[0].reason.find(rig.heads[3].name), std::string::npos)
+      << source->skipped()[0].reason;
 
   // Each imported frame is the stitch of its own heads (lossless PNG: exactly), and resembles the direct
   // panorama render of its own pose more than any other pose's.

@@ -1,10 +1,11 @@
 // Path scoring: hand-built paths with known similarity, noise, and a mirrored path that must score badly.
+#include "processing/egomotion/path_evaluation.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "model/error.h"
-#include "processing/egomotion/path_evaluation.h"
 
 namespace plenopath {
 namespace {
@@ -49,7 +50,8 @@ TEST(PathEvaluation, SimilarityTransformedPathScoresPerfect) {
 TEST(PathEvaluation, KnownOffsetGivesKnownAte) {
   const CameraPath truth = l_shaped_path();
   CameraPath est = truth;
-  // Alternate +-d perpendicular... use a pattern whose mean and rotation are zero: +d, -d along z-order pairs.
+  // Alternate +-d perpendicular... use a pattern whose mean and rotation are zero: +d, -d along z-order
+  // pairs.
   for (size_t i = 0; i < est.frames.size(); ++i) est.frames[i].heading += (i % 2 ? 0.01 : -0.01);
   const PathErrors e = evaluate_path(est, truth);
   EXPECT_NEAR(e.rot_rms_deg, 0.01 * 180 / M_PI, 1e-6);

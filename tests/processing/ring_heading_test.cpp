@@ -1,13 +1,13 @@
 // Ring headings against exact rotations: a pure turn of an equirectangular frame is an exact circular column
 // shift, so shifting a real panorama (integer, or fractional by band-limited resampling) gives known truth.
+#include "processing/egomotion/ring_heading.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
-
-#include "processing/egomotion/ring_heading.h"
 
 namespace plenopath {
 namespace {

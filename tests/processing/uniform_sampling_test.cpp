@@ -22,7 +22,7 @@ TEST(UniformSampling, BudgetFromCountOrRatio) {
   p.ratio = 10.0;
   EXPECT_EQ(keyframe_budget(p, 101), 10);  // round(10.1)
   p.ratio = 1000.0;
-  EXPECT_EQ(keyframe_budget(p, 101), 2);   // never fewer than the two ends
+  EXPECT_EQ(keyframe_budget(p, 101), 2);  // never fewer than the two ends
   p.count = 500;
   EXPECT_EQ(keyframe_budget(p, 101), 101);  // never more than the frames
   EXPECT_EQ(keyframe_budget(p, 0), 0);

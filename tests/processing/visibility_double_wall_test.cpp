@@ -14,8 +14,8 @@ FloorPlan double_wall_plan() {
     const Eigen::Vector2d c[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
     for (int k = 0; k < 4; ++k) plan.segments.push_back({c[k], c[(k + 1) % 4], "WALLS", true});
   };
-  loop(0, 0, 10, 6);          // outer line of the outer wall
-  loop(0.3, 0.3, 9.7, 5.7);   // inner line: a 30 cm wall
+  loop(0, 0, 10, 6);                                             // outer line of the outer wall
+  loop(0.3, 0.3, 9.7, 5.7);                                      // inner line: a 30 cm wall
   plan.segments.push_back({{5, 0.3}, {5, 5.7}, "WALLS", true});  // a partition from wall to wall
   return plan;
 }

@@ -16,8 +16,8 @@
 namespace plenopath {
 namespace {
 
-using test::add_wall;
 using test::add_polygon;
+using test::add_wall;
 using test::ray_cast_area;
 
 using Vec = Eigen::Vector2d;
@@ -67,7 +67,8 @@ double orient(const Vec& a, const Vec& b, const Vec& c) {
 // Whether [p, q] touches a wall (closed segments).
 bool crosses_wall(const std::vector<PlanSegment>& walls, const Vec& p, const Vec& q) {
   for (const auto& w : walls) {
-    const double o1 = orient(p, q, w.a), o2 = orient(p, q, w.b), o3 = orient(w.a, w.b, p), o4 = orient(w.a, w.b, q);
+    const double o1 = orient(p, q, w.a), o2 = orient(p, q, w.b), o3 = orient(w.a, w.b, p),
+                 o4 = orient(w.a, w.b, q);
     if (o1 == 0 && o2 == 0) {  // collinear: do they overlap?
       const Vec d = q - p;
       const double ta = (w.a - p).dot(d) / d.squaredNorm(), tb = (w.b - p).dot(d) / d.squaredNorm();
@@ -148,7 +149,8 @@ TEST(VisibilityFastArea, MatchesRayCasterAndExactOnRandomPlans) {
       const double a = fast.envelope_area(p);
       ++queries;
       EXPECT_NEAR(a / exact.envelope_area(p), 1.0, 1e-9) << "plan " << plan_index << " " << p.transpose();
-      EXPECT_NEAR(a / ray_cast_area(walls, p, 20000), 1.0, 1e-3) << "plan " << plan_index << " " << p.transpose();
+      EXPECT_NEAR(a / ray_cast_area(walls, p, 20000), 1.0, 1e-3)
+          << "plan " << plan_index << " " << p.transpose();
     }
     EXPECT_EQ(fast.envelope_area({-5, -5}), 0.0);  // outside
     const EnvelopeAreaCounts counts = fast.area_counts();
@@ -187,7 +189,8 @@ TEST(VisibilityFastArea, StartsOnAnEdgeAndFallsBackWhereTheExpansionGivesUp) {
   EXPECT_EQ(fallback.area_counts().exact, 6u);
 
   const CameraPath path = random_walk(fast, &rng, 12);
-  const VisibilityCells slow_cells = fallback.cells_along_path(path), fast_cells = fast.cells_along_path(path);
+  const VisibilityCells slow_cells = fallback.cells_along_path(path),
+                        fast_cells = fast.cells_along_path(path);
   EXPECT_EQ(fallback.area_counts().fast, 0u);
   EXPECT_EQ(slow_cells.events, fast_cells.events);
   ASSERT_EQ(slow_cells.cells.size(), fast_cells.cells.size());
@@ -210,7 +213,8 @@ TEST(VisibilityFastArea, CellMeanAreaIsTheMeanOverTheCell) {
     const VisibilityCells cells = fast.cells_along_path(path);
     // One expansion per cell (at its middle); the rest of the cell from its wedges in closed form.
     const EnvelopeAreaCounts counts = fast.area_counts();
-    EXPECT_LE(counts.fast + counts.exact, cells.cells.size() + cells.cells.size() / 10 + 2) << "plan " << plan_index;
+    EXPECT_LE(counts.fast + counts.exact, cells.cells.size() + cells.cells.size() / 10 + 2)
+        << "plan " << plan_index;
     EXPECT_GT(counts.closed_form, 3 * cells.cells.size());
     for (std::size_t c = 0; c < cells.cells.size(); c += std::max<std::size_t>(1, cells.cells.size() / 15)) {
       const auto& cell = cells.cells[c];
@@ -261,8 +265,8 @@ TEST(VisibilityFastArea, DegenerateGeometryAndGridAlignedPoints) {
   EXPECT_GT(queries, 1000);
   // Some of these may fall back (the answer is exact either way); most must not.
   EXPECT_GE(fast.area_counts().fast, static_cast<std::size_t>(queries * 9 / 10));
-  std::printf("grid-aligned points: %d queries, %zu fast, %zu exact fallbacks\n", queries, fast.area_counts().fast,
-              fast.area_counts().exact);
+  std::printf("grid-aligned points: %d queries, %zu fast, %zu exact fallbacks\n", queries,
+              fast.area_counts().fast, fast.area_counts().exact);
 }
 
 // Crossing, touching and axis-aligned free-standing walls, queried very near plan vertices (1 nm to 1 mm)
@@ -303,7 +307,8 @@ TEST(VisibilityFastArea, NearVerticesAndOnVertexLines) {
 // space only).
 TEST(VisibilityFastArea, OfficeSampleCellsAndCriticalLines) {
   const FloorPlan plan = make_office_sample_plan();
-  const CameraPath path = read_path_file(std::string(PLENOPATH_SOURCE_DIR) + "/resources/samples/office/office_path.json");
+  const CameraPath path =
+      read_path_file(std::string(PLENOPATH_SOURCE_DIR) + "/resources/samples/office/office_path.json");
   const VisibilityIndex index(plan);
   const auto walls = index.effective_segments();
   const auto vertices = index.vertices();

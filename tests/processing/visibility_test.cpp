@@ -1,5 +1,7 @@
 // Visibility against brute-force oracles written here: a ray caster for envelope areas and radial
 // functions, and dense sampling of the visible vertex set for events along paths.
+#include "processing/visibility.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -7,15 +9,14 @@
 #include <random>
 
 #include "model/error.h"
-#include "processing/visibility.h"
 #include "tests/processing/plan_oracle.h"
 
 namespace plenopath {
 namespace {
 
-using test::add_wall;
 using test::add_polygon;
 using test::add_rectangle;
+using test::add_wall;
 using test::cast_ray;
 using test::ray_cast_area;
 
@@ -26,9 +27,9 @@ using Vec = Eigen::Vector2d;
 FloorPlan sample_plan() {
   FloorPlan plan;
   add_polygon(&plan, {{0, 0}, {12, 0}, {12, 6}, {7, 6}, {7, 10}, {0, 10}});
-  add_wall(&plan, {5, 0}, {5, 3.5});    // from the outer wall, leaves a door gap up to y = 4.5
-  add_wall(&plan, {5, 4.5}, {5, 10});   // reaches the outer wall: T-junction at (5, 10)
-  add_wall(&plan, {0, 6}, {3.8, 6});    // kitchen wall, dangling end
+  add_wall(&plan, {5, 0}, {5, 3.5});   // from the outer wall, leaves a door gap up to y = 4.5
+  add_wall(&plan, {5, 4.5}, {5, 10});  // reaches the outer wall: T-junction at (5, 10)
+  add_wall(&plan, {0, 6}, {3.8, 6});   // kitchen wall, dangling end
   add_rectangle(&plan, {9, 3}, 0.6, 0.6, 0.3);
   add_rectangle(&plan, {2.5, 2.5}, 0.5, 0.8, 0.0);
   return plan;
@@ -110,7 +111,8 @@ TEST(Visibility, RandomPlansMatchRayCaster) {
       const Envelope e = index.envelope(p);
       if (e.status != EnvelopeStatus::ok) continue;
       ++checked;
-      EXPECT_NEAR(e.area / ray_cast_area(walls, p, 20000), 1.0, 1e-3) << "plan " << plan_index << " " << p.transpose();
+      EXPECT_NEAR(e.area / ray_cast_area(walls, p, 20000), 1.0, 1e-3)
+          << "plan " << plan_index << " " << p.transpose();
       const auto radial = index.radial_function(p, 360);
       for (int k = 0; k < 360; ++k) ASSERT_NEAR(radial[k], cast_ray(walls, p, 2 * M_PI * k / 360), 1e-6);
     }
@@ -121,11 +123,11 @@ TEST(Visibility, RandomPlansMatchRayCaster) {
 TEST(Visibility, DegenerateGeometryAndPointStatus) {
   FloorPlan plan;
   add_polygon(&plan, {{0, 0}, {10, 0}, {10, 8}, {0, 8}});
-  add_wall(&plan, {0, 0}, {10, 0});     // duplicate
-  add_wall(&plan, {2, 0}, {6, 0});      // collinear overlap
-  add_wall(&plan, {4, 8}, {12, 8});     // collinear, sticking out
-  add_wall(&plan, {3, 3}, {3, 3});      // zero length
-  add_wall(&plan, {5, 8}, {5, 6});      // T-junction, dangling
+  add_wall(&plan, {0, 0}, {10, 0});             // duplicate
+  add_wall(&plan, {2, 0}, {6, 0});              // collinear overlap
+  add_wall(&plan, {4, 8}, {12, 8});             // collinear, sticking out
+  add_wall(&plan, {3, 3}, {3, 3});              // zero length
+  add_wall(&plan, {5, 8}, {5, 6});              // T-junction, dangling
   add_rectangle(&plan, {7, 3}, 1.0, 1.0, 0.0);  // pillar
   const VisibilityIndex index(plan);
   EXPECT_EQ(index.classify({2, 2}), EnvelopeStatus::ok);
@@ -172,7 +174,8 @@ bool blocked(const std::vector<PlanSegment>& walls, const Vec& p, const Vec& v) 
   return false;
 }
 
-std::vector<char> visible_set(const std::vector<PlanSegment>& walls, const std::vector<Vec>& vertices, const Vec& p) {
+std::vector<char> visible_set(const std::vector<PlanSegment>& walls, const std::vector<Vec>& vertices,
+                              const Vec& p) {
   std::vector<char> out(vertices.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) out[i] = !blocked(walls, p, vertices[i]);
   return out;
@@ -196,7 +199,8 @@ TEST(Visibility, EventsMatchDenseSamplingOfVisibleVertices) {
         const Vec q = path.frames.back().position();
         if (blocked(walls, q, p)) continue;
         bool touches = false;
-        for (const auto& w : walls) touches |= std::abs(orient(q, p, w.a)) < 1e-9 || std::abs(orient(q, p, w.b)) < 1e-9;
+        for (const auto& w : walls)
+          touches |= std::abs(orient(q, p, w.a)) < 1e-9 || std::abs(orient(q, p, w.b)) < 1e-9;
         if (touches) continue;
       }
       PathFrame f;

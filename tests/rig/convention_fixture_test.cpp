@@ -51,7 +51,8 @@ TEST(ConventionFixture, BoxesAppearWhereTheConventionSays) {
     const cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
     ASSERT_FALSE(img.empty()) << file;
     for (const Box& box : boxes) {
-      const double expected = azimuth_of_world_angle(heading_deg * M_PI / 180, box.world_angle_deg * M_PI / 180);
+      const double expected =
+          azimuth_of_world_angle(heading_deg * M_PI / 180, box.world_angle_deg * M_PI / 180);
       const double measured = measured_azimuth(img, box);
       EXPECT_NEAR(std::remainder(measured - expected, 2 * M_PI) * 180 / M_PI, 0.0, 0.5)
           << file << " " << box.name;

@@ -1,9 +1,10 @@
+#include "rig/equirect_sampling.h"
+
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
 
 #include "model/error.h"
-#include "rig/equirect_sampling.h"
 
 namespace plenopath {
 namespace {

@@ -1,5 +1,7 @@
 // The multi-head rig: calibration files, head geometry, stitching against the direct panorama render,
 // parallax with offsets, cube maps.
+#include "rig/multi_head_rig.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -7,7 +9,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model/error.h"
-#include "rig/multi_head_rig.h"
 #include "rig/spherical.h"
 #include "rig/synthetic_camera.h"
 
@@ -116,8 +117,9 @@ TEST(MultiHeadRig, StitchWithoutOffsetsMatchesTheDirectRender) {
     db[scale - 1] = psnr(stitched, reference);
     EXPECT_LT(seam_parallax(rig, direct.depth, so).max_px, 1e-9);
   }
-  std::printf("stitch PSNR without offsets: %.2f dB at 256x128, %.2f dB rendered at 512x256 and box-filtered\n",
-              db[0], db[1]);
+  std::printf(
+      "stitch PSNR without offsets: %.2f dB at 256x128, %.2f dB rendered at 512x256 and box-filtered\n",
+      db[0], db[1]);
   RecordProperty("stitch_psnr_db", std::to_string(db[1]));
   EXPECT_GE(db[0], 32.0);
   EXPECT_GE(db[1], 35.0);
@@ -137,9 +139,10 @@ TEST(MultiHeadRig, OffsetsCauseParallaxAtTheSeams) {
   const SeamParallax far = seam_parallax(rig, direct.depth, so);
   so.stitch_distance = 2.5;
   const SeamParallax tuned = seam_parallax(rig, direct.depth, so);
-  std::printf("seam parallax with 6 cm offsets: mean %.3f px, max %.3f px (stitched at infinity); "
-              "mean %.3f px, max %.3f px (at 2.5 m); overlap %.1f%%\n",
-              far.mean_px, far.max_px, tuned.mean_px, tuned.max_px, 100 * far.overlap_fraction);
+  std::printf(
+      "seam parallax with 6 cm offsets: mean %.3f px, max %.3f px (stitched at infinity); "
+      "mean %.3f px, max %.3f px (at 2.5 m); overlap %.1f%%\n",
+      far.mean_px, far.max_px, tuned.mean_px, tuned.max_px, 100 * far.overlap_fraction);
   EXPECT_GT(far.max_px, 0.1);
   EXPECT_LT(tuned.mean_px, far.mean_px);  // compensating at a typical distance helps
   EXPECT_GT(far.overlap_fraction, 0.1);
@@ -163,10 +166,12 @@ TEST(CubeMap, FacesMatchDirectRendersAndRoundTrip) {
     cv::Mat dirs(size, size, CV_64FC3);
     for (int j = 0; j < size; ++j)
       for (int i = 0; i < size; ++i) {
-        const Eigen::Vector3d d = world_from_camera * cube_face_to_bearing(static_cast<CubeFace>(f), {i + 0.5, j + 0.5}, size);
+        const Eigen::Vector3d d =
+            world_from_camera * cube_face_to_bearing(static_cast<CubeFace>(f), {i + 0.5, j + 0.5}, size);
         dirs.at<cv::Vec3d>(j, i) = cv::Vec3d(d.x(), d.y(), d.z());
       }
-    const cv::Mat direct = render_directions(scene, {pose.x, pose.y, 1.6}, dirs, 2 * M_PI / options.width, options).rgb;
+    const cv::Mat direct =
+        render_directions(scene, {pose.x, pose.y, 1.6}, dirs, 2 * M_PI / options.width, options).rgb;
     const double db = psnr(faces[f], direct);
     EXPECT_GT(db, 24.0) << to_string(static_cast<CubeFace>(f));  // same view; resampling differences only
   }

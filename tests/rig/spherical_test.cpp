@@ -1,9 +1,9 @@
+#include "rig/spherical.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "rig/spherical.h"
 
 namespace plenopath {
 namespace {

@@ -1,6 +1,8 @@
 // The synthetic camera against independent truth: depth from a brute-force 3-D ray/box intersection built
 // straight from the FloorPlan, box directions against the POV-Ray convention fixtures, walk geometry
 // against the plan's walls.
+#include "rig/synthetic_camera.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 #include "model/error.h"
 #include "rig/plan_drawing.h"
 #include "rig/spherical.h"
-#include "rig/synthetic_camera.h"
 
 namespace plenopath {
 namespace {
@@ -107,10 +108,10 @@ TEST(SyntheticCamera, DepthMatchesIndependentIntersection) {
   options.height = 128;
   std::mt19937 rng(12345);
   const PathFrame poses[] = {
-      {0, "", 4.0, 7.5, 0.3, 1.0, kFrameOk, ""},       // corridor
-      {1, "", 11.0, 10.0, -2.0, 1.0, kFrameOk, ""},    // meeting room, table in view
-      {2, "", 12.6, 2.6, 3.1, 1.0, kFrameOk, ""},      // lobby between round pillars
-      {3, "", 4.5, 1.0, 1.57, 1.0, kFrameOk, ""},      // lab, near benches
+      {0, "", 4.0, 7.5, 0.3, 1.0, kFrameOk, ""},     // corridor
+      {1, "", 11.0, 10.0, -2.0, 1.0, kFrameOk, ""},  // meeting room, table in view
+      {2, "", 12.6, 2.6, 3.1, 1.0, kFrameOk, ""},    // lobby between round pillars
+      {3, "", 4.5, 1.0, 1.57, 1.0, kFrameOk, ""},    // lab, near benches
   };
   int checked = 0, furniture_hits = 0;
   double worst = 0.0;
@@ -166,7 +167,8 @@ TEST(SyntheticCamera, PeopleAppearAndMove) {
     EXPECT_LT((at0[i].centre - at30[i].centre).norm(), 1.6);  // at most 1.5 m/s for one second
     double farthest = 0;
     for (int frame = 10; frame <= 150; frame += 10)
-      farthest = std::max(farthest, (people_at_frame(scene, options, frame)[i].centre - at0[i].centre).norm());
+      farthest =
+          std::max(farthest, (people_at_frame(scene, options, frame)[i].centre - at0[i].centre).norm());
     EXPECT_GT(farthest, 0.5) << "person " << i;
   }
   // A ray aimed at a person's chest hits the person at the right distance.
@@ -206,9 +208,10 @@ FloorPlan convention_plan() {
     const Eigen::Vector2d c = 5.0 * dirs[i];
     const Eigen::Vector2d side(-dirs[i].y(), dirs[i].x());
     const double hw = widths[i] / 2;
-    d.polylines.push_back({{c - 0.5 * dirs[i] - hw * side, c - 0.5 * dirs[i] + hw * side, c + 0.5 * dirs[i] + hw * side,
-                            c + 0.5 * dirs[i] - hw * side},
-                           true, "FURNITURE"});
+    d.polylines.push_back({{c - 0.5 * dirs[i] - hw * side, c - 0.5 * dirs[i] + hw * side,
+                            c + 0.5 * dirs[i] + hw * side, c + 0.5 * dirs[i] - hw * side},
+                           true,
+                           "FURNITURE"});
   }
   return flatten_drawing(d);
 }
@@ -268,10 +271,10 @@ TEST(SyntheticCamera, BoxAzimuthsMatchThePovRayFixtures) {
   RenderOptions options;
   options.width = 512;
   options.height = 256;
-  const std::pair<cv::Vec3b, cv::Vec3b> colours[4] = {{{0, 0, 120}, {90, 90, 255}},     // red
-                                                       {{0, 120, 0}, {90, 255, 90}},     // green
-                                                       {{120, 0, 0}, {255, 90, 90}},     // blue
-                                                       {{0, 120, 120}, {90, 255, 255}}};  // yellow
+  const std::pair<cv::Vec3b, cv::Vec3b> colours[4] = {{{0, 0, 120}, {90, 90, 255}},      // red
+                                                      {{0, 120, 0}, {90, 255, 90}},      // green
+                                                      {{120, 0, 0}, {255, 90, 90}},      // blue
+                                                      {{0, 120, 120}, {90, 255, 255}}};  // yellow
   for (int heading_deg : {0, 30, 90}) {
     const cv::Mat fixture = cv::imread(std::string(PLENOPATH_TEST_DATA_DIR) + "/convention/pano_heading" +
                                        std::to_string(heading_deg) + ".png");
@@ -305,8 +308,10 @@ TEST(SyntheticCamera, BadOptionsAndEmptyPlansAreReported) {
   EXPECT_THROW(render_panorama(build_synthetic_scene(make_office_sample_plan()), PathFrame{}, r), Error);
 }
 
-bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const double d1 = cross2(q - p, a - p), d2 = cross2(q - p, b - p), d3 = cross2(b - a, p - a), d4 = cross2(b - a, q - a);
+bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                    const Eigen::Vector2d& b) {
+  const double d1 = cross2(q - p, a - p), d2 = cross2(q - p, b - p), d3 = cross2(b - a, p - a),
+               d4 = cross2(b - a, q - a);
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
 }
 
@@ -322,8 +327,8 @@ TEST(AutoWalk, StaysClearOfWallsAndVisitsTheRooms) {
   const CameraPath path = auto_walk(plan, options);
   ASSERT_GT(path.size(), 300u);
   // Room rectangles of the sample (hand-copied from its layout).
-  const double rooms[8][4] = {{0, 8.5, 8, 15},   {8, 8.5, 14, 15}, {14, 8.5, 19.5, 15}, {19.5, 8.5, 25, 15},
-                              {0, 0, 9, 6.5},    {9, 0, 16, 6.5},  {16, 0, 25, 6.5},    {0, 6.5, 25, 8.5}};
+  const double rooms[8][4] = {{0, 8.5, 8, 15}, {8, 8.5, 14, 15}, {14, 8.5, 19.5, 15}, {19.5, 8.5, 25, 15},
+                              {0, 0, 9, 6.5},  {9, 0, 16, 6.5},  {16, 0, 25, 6.5},    {0, 6.5, 25, 8.5}};
   std::set<int> visited;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const PathFrame& f = path.frames[i];
@@ -341,7 +346,8 @@ TEST(AutoWalk, StaysClearOfWallsAndVisitsTheRooms) {
       EXPECT_LT(step.norm(), options.step * (1 + options.step_wobble) + 1e-9);
       EXPECT_GT(step.norm(), options.step * (1 - options.step_wobble) * 0.5);
     }
-    if (i > 0 && i + 1 < path.size()) {  // the trolley rolls along its own forward axis, give or take the wobble
+    if (i > 0 &&
+        i + 1 < path.size()) {  // the trolley rolls along its own forward axis, give or take the wobble
       const Eigen::Vector2d tangent = path.frames[i + 1].position() - path.frames[i - 1].position();
       const double off = std::abs(wrap_angle(std::atan2(tangent.y(), tangent.x()) - f.heading));
       EXPECT_LT(off, radians(options.heading_wobble_deg + 25.0)) << "frame " << i;
@@ -414,7 +420,8 @@ TEST(SyntheticCamera, GridCastingEqualsTestingEveryFace) {
     ASSERT_TRUE(with_grid.grid);
     for (const PathFrame& pose : {PathFrame{3, "", 4.0, 7.5, 0.2, 1.0, kFrameOk, ""},
                                   PathFrame{9, "", 12.4, 2.9, -1.0, 1.0, kFrameOk, ""}}) {
-      const RenderedPanorama a = render_panorama(with_grid, pose, options), b = render_panorama(without, pose, options);
+      const RenderedPanorama a = render_panorama(with_grid, pose, options),
+                             b = render_panorama(without, pose, options);
       EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
       EXPECT_EQ(cv::norm(a.rgb, b.rgb, cv::NORM_INF), 0.0);
     }

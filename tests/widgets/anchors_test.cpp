@@ -2,6 +2,8 @@
 // one undo step), Shift snaps to a plan corner, the Anchors panel lists, edits and deletes anchors with
 // residuals, and Refine with anchors runs as an undoable task. The test project's path is straight
 // (x = 1..7 at y = 3.5, 30 frames), so the expected bends are computed by hand below.
+#include <gtest/gtest.h>
+
 #include <QAction>
 #include <QApplication>
 #include <QElapsedTimer>
@@ -12,7 +14,6 @@
 #include <QToolButton>
 #include <QUndoStack>
 #include <cmath>
-#include <gtest/gtest.h>
 
 #include "app/studio/main_window.h"
 #include "app/studio/studio_tasks.h"
@@ -20,10 +21,10 @@
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/visibility.h"
 #include "rig/synthetic_camera.h"
-#include "widgets/anchor_commands.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
+#include "widgets/anchor_commands.h"
 #include "widgets/anchors_panel.h"
 #include "widgets/document_commands.h"
 #include "widgets/map_view.h"
@@ -102,7 +103,8 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
   EXPECT_LT((doc.project().anchors[0].position - Eigen::Vector2d(1.0, 3.0)).norm(), tolerance);
   const CameraPath after_first = doc.project().path;
   for (std::size_t i = 0; i < after_first.size(); ++i) {
-    EXPECT_NEAR(after_first.frames[i].x - original.frames[i].x, after_first.frames[0].x - original.frames[0].x, 1e-9);
+    EXPECT_NEAR(after_first.frames[i].x - original.frames[i].x,
+                after_first.frames[0].x - original.frames[0].x, 1e-9);
     EXPECT_NEAR(after_first.frames[i].y, 3.0, tolerance) << "frame " << i;
   }
   EXPECT_EQ(doc.undo_stack()->count(), 1);
@@ -112,11 +114,13 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
   // near the dragged one move most and those near the other anchor hardly at all.
   map->render_now();
   drag(map, map->widget_pixel_of(after_first.frames[29].position()),
-       map->widget_pixel_of(after_first.frames[29].position() - Eigen::Vector2d(0, 1.0)), Qt::ControlModifier);
+       map->widget_pixel_of(after_first.frames[29].position() - Eigen::Vector2d(0, 1.0)),
+       Qt::ControlModifier);
   ASSERT_EQ(doc.project().anchors.size(), 2u);
   const CameraPath bent = doc.project().path;
   EXPECT_LT((bent.frames[29].position() - doc.project().anchors[1].position).norm(), 1e-4) << "on its anchor";
-  EXPECT_LT((bent.frames[0].position() - doc.project().anchors[0].position).norm(), 1e-4) << "first anchor kept";
+  EXPECT_LT((bent.frames[0].position() - doc.project().anchors[0].position).norm(), 1e-4)
+      << "first anchor kept";
   std::vector<double> moved;
   for (std::size_t i = 0; i < bent.size(); ++i) {
     moved.push_back((bent.frames[i].position() - after_first.frames[i].position()).norm());
@@ -129,7 +133,8 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
   map->render_now();
   const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
   for (const Anchor& a : doc.project().anchors)
-    EXPECT_GT(count_near(image, map->widget_pixel_of(a.position), 4, is_anchor_colour), 10) << "frame " << a.frame;
+    EXPECT_GT(count_near(image, map->widget_pixel_of(a.position), 4, is_anchor_colour), 10)
+        << "frame " << a.frame;
 
   // Undo restores the path and the anchors, step by step; redo brings them back.
   EXPECT_EQ(doc.undo_stack()->count(), 2);
@@ -145,7 +150,8 @@ TEST(Anchors, DragCreatesAnAnchorBendsThePathAndUndoRestoresIt) {
 }
 
 // Visibility cells belong to a path: when an anchor moves the path, the cells are those of the moved path
-// (the map's colours and the visibility sampler use them), and undo brings back the old ones with the old path.
+// (the map's colours and the visibility sampler use them), and undo brings back the old ones with the old
+// path.
 TEST(Anchors, CellsFollowTheCorrectedPathAndUndoRestoresThem) {
   const auto& t = test_project();
   Studio s;
@@ -191,7 +197,8 @@ TEST(Anchors, DraggingAnAnchorMarkerMovesItAndShiftSnapsToAPlanCorner) {
   map->render_now();
   drag(map, corner, map->widget_pixel_of({5.0, 2.0}), Qt::NoModifier);
   ASSERT_EQ(doc.project().anchors.size(), 1u);
-  EXPECT_LT((doc.project().anchors[0].position - Eigen::Vector2d(5.0, 2.0)).norm(), 1.5 * metres_per_pixel(map));
+  EXPECT_LT((doc.project().anchors[0].position - Eigen::Vector2d(5.0, 2.0)).norm(),
+            1.5 * metres_per_pixel(map));
   EXPECT_EQ(doc.undo_stack()->count(), 2);
   const Project before = doc.project();
   map->render_now();
@@ -215,7 +222,8 @@ TEST(Anchors, PanelListsEditsAndDeletesAnchorsWithResiduals) {
   // Anchors as read from a file: frame 0 on the path, frame 29 half a metre south of it.
   Project with_anchors = doc.snapshot();
   with_anchors.anchors = {{0, {1.0, 3.5}, std::nullopt}, {29, {7.0, 3.0}, std::nullopt}};
-  doc.undo_stack()->push(new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
+  doc.undo_stack()->push(
+      new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
   ASSERT_EQ(table->rowCount(), 2);
   EXPECT_EQ(table->item(0, widgets::AnchorsPanel::kFrameColumn)->text(), "0");
   EXPECT_EQ(table->item(1, widgets::AnchorsPanel::kFrameColumn)->text(), "29");
@@ -306,7 +314,8 @@ TEST(Anchors, RefineWithAnchorsIsATaskAndOneUndoStep) {
   // and shrinks the straight 6 m path onto that line, frame i at y = 1 + 3 i / 29.
   Project with_anchors = doc.snapshot();
   with_anchors.anchors = {{0, {4.0, 1.0}, std::nullopt}, {29, {4.0, 4.0}, std::nullopt}};
-  doc.undo_stack()->push(new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
+  doc.undo_stack()->push(
+      new widgets::ReplacePartsCommand(doc, "anchors", with_anchors, widgets::kAnchorsChanged));
   ASSERT_TRUE(refine->isEnabled());
   const int steps = doc.undo_stack()->count();
   refine->trigger();
@@ -323,7 +332,9 @@ TEST(Anchors, RefineWithAnchorsIsATaskAndOneUndoStep) {
     EXPECT_NEAR(refined.frames[i].heading, M_PI / 2, 0.02) << i;
   }
   EXPECT_EQ(doc.undo_stack()->count(), steps + 1);
-  EXPECT_LT(s.window.anchors_panel()->table()->item(1, widgets::AnchorsPanel::kResidualColumn)->text().toDouble(), 0.05);
+  EXPECT_LT(
+      s.window.anchors_panel()->table()->item(1, widgets::AnchorsPanel::kResidualColumn)->text().toDouble(),
+      0.05);
   doc.undo_stack()->undo();
   EXPECT_EQ(doc.project().path, original);
 }
@@ -354,7 +365,8 @@ TEST(Anchors, AnchorsPlacedOneByOneUndoDrift) {
   doc.reset(project, QString());
   const std::size_t n = truth.size();
   for (std::size_t i : {std::size_t{0}, n - 1, n / 2}) {
-    const Anchors after = widgets::anchors_with(doc.project().anchors, truth.frames[i].index, truth.frames[i].position());
+    const Anchors after =
+        widgets::anchors_with(doc.project().anchors, truth.frames[i].index, truth.frames[i].position());
     auto* command = new widgets::SetAnchorsCommand(doc, "anchor", after, widgets::PathCorrection::kRefine);
     EXPECT_EQ(command->applied(), widgets::PathCorrection::kRefine);
     doc.undo_stack()->push(command);
@@ -366,7 +378,8 @@ TEST(Anchors, AnchorsPlacedOneByOneUndoDrift) {
   for (const Anchor& a : doc.project().anchors)
     EXPECT_LT((doc.project().path.find_frame(a.frame)->position() - a.position).norm(), 0.05) << a.frame;
   // The warp alone (what the drag previews) does much less.
-  const double warped = evaluate_path(preview_path_with_anchors(drifted, doc.project().anchors), truth).ate_rms_m;
+  const double warped =
+      evaluate_path(preview_path_with_anchors(drifted, doc.project().anchors), truth).ate_rms_m;
   std::printf("  the warp alone: ATE %.3f m\n", warped);
   while (doc.undo_stack()->canUndo()) doc.undo_stack()->undo();
   EXPECT_EQ(doc.project().path, drifted);
@@ -401,10 +414,13 @@ TEST(Anchors, DragOnALongPathPrintsItsFrameTime) {
   }
   const double ms_per_move = clock.nsecsElapsed() / 1e6 / moves;
   clock.restart();
-  send_mouse(&map, QEvent::MouseButtonRelease, from + QPoint(2 * moves, moves), Qt::NoButton, Qt::ControlModifier);
+  send_mouse(&map, QEvent::MouseButtonRelease, from + QPoint(2 * moves, moves), Qt::NoButton,
+             Qt::ControlModifier);
   const double release_ms = clock.nsecsElapsed() / 1e6;
-  std::printf("drag on a %zu-frame path: %.1f ms per move (preview + redraw; a redraw alone %.1f ms), release "
-              "(refinement) %.0f ms\n", doc.project().path.size(), ms_per_move, ms_per_render, release_ms);
+  std::printf(
+      "drag on a %zu-frame path: %.1f ms per move (preview + redraw; a redraw alone %.1f ms), release "
+      "(refinement) %.0f ms\n",
+      doc.project().path.size(), ms_per_move, ms_per_render, release_ms);
   EXPECT_EQ(doc.project().anchors.size(), 1u);
 }
 
@@ -416,8 +432,8 @@ TEST(Anchors, CancelledRefinementChangesNothing) {
   project.path = auto_walk(project.plan);
   const std::size_t n = project.path.size();
   for (std::size_t i : {std::size_t{0}, n / 2, n - 1})
-    project.anchors.push_back({project.path.frames[i].index, project.path.frames[i].position() + Eigen::Vector2d(0.3, 0.2),
-                               std::nullopt});
+    project.anchors.push_back({project.path.frames[i].index,
+                               project.path.frames[i].position() + Eigen::Vector2d(0.3, 0.2), std::nullopt});
   widgets::ProjectDocument doc;
   doc.reset(project, QString());
   widgets::TaskRunner runner(doc);

@@ -3,6 +3,8 @@
 // x = 8 m; the camera is 1.6 m up), drawn re-projected in a later frame, previewed with its media, shown on
 // the map; undo and redo; dragging a corner handle; Delete; Esc; an event polygon with its properties edited
 // in the Hotspots panel, and its warnings shown as plain text.
+#include <gtest/gtest.h>
+
 #include <QAction>
 #include <QApplication>
 #include <QComboBox>
@@ -14,7 +16,6 @@
 #include <QTest>
 #include <QUndoStack>
 #include <cmath>
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -206,7 +207,8 @@ TEST(Hotspots, MediaPreviewDragHandleDeleteAndEscape) {
   const QPointF to = from + QPointF(40, 20);
   const int before_drag = undo->count();
   send_mouse(s.pano(), QEvent::MouseButtonPress, from, Qt::LeftButton);
-  for (int k = 1; k <= 8; ++k) send_mouse(s.pano(), QEvent::MouseMove, from + (to - from) * (k / 8.0), Qt::LeftButton);
+  for (int k = 1; k <= 8; ++k)
+    send_mouse(s.pano(), QEvent::MouseMove, from + (to - from) * (k / 8.0), Qt::LeftButton);
   send_mouse(s.pano(), QEvent::MouseButtonRelease, to, Qt::NoButton);
   EXPECT_EQ(undo->count(), before_drag + 1) << "a drag is one undo step";
   const Eigen::Vector3d moved = s.hotspot(id)->world_corners[1];
@@ -245,7 +247,8 @@ TEST(Hotspots, EventPolygonEditedInThePanelWithPlainTextWarnings) {
   // Five Shift+clicks on the north wall (y = 5; look left, azimuth -90 degrees) and Enter: a polygon.
   s.pano()->set_look(-M_PI / 2, 0.0, M_PI / 2);
   s.action("New &event hotspot")->trigger();
-  const std::vector<Eigen::Vector3d> pentagon{{1.5, 5, 2.0}, {2.3, 5, 1.6}, {2.0, 5, 1.0}, {1.0, 5, 1.0}, {0.7, 5, 1.6}};
+  const std::vector<Eigen::Vector3d> pentagon{
+      {1.5, 5, 2.0}, {2.3, 5, 1.6}, {2.0, 5, 1.0}, {1.0, 5, 1.0}, {0.7, 5, 1.6}};
   for (const auto& corner : pentagon) click(s.pano(), point_of(s, corner, 0), Qt::ShiftModifier);
   EXPECT_EQ(s.editor().pending_corners().size(), 5u);
   s.pano()->setFocus();
@@ -306,10 +309,11 @@ TEST(Hotspots, VideoMediaPlaysInThePreviewAndWarpsInWholeImageMode) {
   // A 10 fps clip: five red frames, then five blue ones.
   const QString clip = QFileInfo(test_project().project_file).absolutePath() + "/clip.avi";
   {
-    cv::VideoWriter writer(clip.toStdString(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0,
-                           cv::Size(64, 48));
+    cv::VideoWriter writer(clip.toStdString(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
+                           10.0, cv::Size(64, 48));
     ASSERT_TRUE(writer.isOpened());
-    for (int k = 0; k < 10; ++k) writer.write(cv::Mat(48, 64, CV_8UC3, k < 5 ? cv::Scalar(0, 0, 255) : cv::Scalar(255, 0, 0)));
+    for (int k = 0; k < 10; ++k)
+      writer.write(cv::Mat(48, 64, CV_8UC3, k < 5 ? cv::Scalar(0, 0, 255) : cv::Scalar(255, 0, 0)));
   }
   widgets::HotspotsPanel* panel = s.window.hotspots_panel();
   panel->media_edit()->setFocus();
@@ -319,13 +323,17 @@ TEST(Hotspots, VideoMediaPlaysInThePreviewAndWarpsInWholeImageMode) {
   const std::vector<Eigen::Vector3d>& q = s.hotspot(id)->world_corners;
   const Eigen::Vector3d centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   auto centre_colour = [&] {
-    return s.pano()->grabFramebuffer().convertToFormat(QImage::Format_RGB32).pixel(point_of(s, centre, 0).toPoint());
+    return s.pano()
+        ->grabFramebuffer()
+        .convertToFormat(QImage::Format_RGB32)
+        .pixel(point_of(s, centre, 0).toPoint());
   };
   auto is_red = [](QRgb c) { return qRed(c) > 200 && qGreen(c) < 60 && qBlue(c) < 60; };
   auto is_blue = [](QRgb c) { return qBlue(c) > 200 && qGreen(c) < 60 && qRed(c) < 60; };
   EXPECT_TRUE(is_red(centre_colour())) << "the first frame";
   s.editor().set_playing(true);
-  EXPECT_TRUE(wait_until([&] { return is_blue(centre_colour()); }, 5000)) << "playing reaches the blue frames";
+  EXPECT_TRUE(wait_until([&] { return is_blue(centre_colour()); }, 5000))
+      << "playing reaches the blue frames";
   s.editor().set_playing(false);
 
   // Whole-image mode: the quad's centre in the equirectangular frame shows the media too.

@@ -1,22 +1,24 @@
 // The sampling panel's visibility and depth methods: a clear message until visibility is computed; then
 // switching to visibility resamples (on the worker), meets the budget, shows the loss, is one undo step,
 // and a slider drag stays one undo step.
+#include "widgets/sampling_panel.h"
+
+#include <gtest/gtest.h>
+
 #include <QComboBox>
 #include <QDir>
-#include <QTemporaryDir>
 #include <QSlider>
+#include <QTemporaryDir>
 #include <QUndoStack>
-#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "app/studio/studio_tasks.h"
 #include "processing/uniform_sampling.h"
 #include "processing/visibility.h"
 #include "rig/synthetic_camera.h"
-#include <opencv2/imgcodecs.hpp>
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/project_document.h"
-#include "widgets/sampling_panel.h"
 
 namespace plenopath {
 namespace {
@@ -43,7 +45,8 @@ TEST(SamplingPanel, VisibilityNeedsTheCellsFirst) {
   const int steps = document.undo_stack()->count();
   select(panel, "visibility");
   panel.wait();
-  EXPECT_TRUE(panel.statistics_text().contains("Compute visibility")) << panel.statistics_text().toStdString();
+  EXPECT_TRUE(panel.statistics_text().contains("Compute visibility"))
+      << panel.statistics_text().toStdString();
   EXPECT_EQ(document.undo_stack()->count(), steps);
   select(panel, "depth");  // the test capture has no depth maps
   EXPECT_TRUE(panel.statistics_text().contains("depth")) << panel.statistics_text().toStdString();

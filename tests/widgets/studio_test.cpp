@@ -1,17 +1,18 @@
 // The studio's done-when tests: open a project, the map shows plan and path, stepping frames changes the
 // panorama (and the panorama follows the equirect convention), sampling sliders and undo, cancelled tasks,
 // autosave recovery after kill -9, and the command line.
+#include <gtest/gtest.h>
+
 #include <QAbstractSlider>
 #include <QAction>
-#include <QComboBox>
 #include <QApplication>
+#include <QComboBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
-#include <QMimeData>
-#include <QUrl>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
+#include <QMimeData>
 #include <QProcess>
 #include <QSignalSpy>
 #include <QSlider>
@@ -19,8 +20,8 @@
 #include <QThread>
 #include <QTimer>
 #include <QUndoStack>
+#include <QUrl>
 #include <cmath>
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/studio/autosave.h"
@@ -157,7 +158,8 @@ TEST(Studio, TimelineMarksFlaggedFramesAndSaysWhy) {
   s.window.document().set_current_position(12);
   QApplication::processEvents();
   EXPECT_TRUE(timeline->info_text().contains("5 flagged")) << timeline->info_text().toStdString();
-  EXPECT_TRUE(timeline->info_text().contains("too few tracked points")) << timeline->info_text().toStdString();
+  EXPECT_TRUE(timeline->info_text().contains("too few tracked points"))
+      << timeline->info_text().toStdString();
   s.window.document().set_current_position(25);
   QApplication::processEvents();
   EXPECT_TRUE(timeline->info_text().contains("5 flagged"));
@@ -229,9 +231,8 @@ TEST(Studio, PlayAdvancesAtTheCaptureFrameRate) {
   ASSERT_TRUE(s.window.open_project(t.project_file));
   widgets::TimelinePanel* timeline = s.window.timeline_panel();
   std::vector<int> positions;
-  QObject::connect(&s.window.document(), &widgets::ProjectDocument::current_position_changed, [&] {
-    positions.push_back(s.window.document().current_position());
-  });
+  QObject::connect(&s.window.document(), &widgets::ProjectDocument::current_position_changed,
+                   [&] { positions.push_back(s.window.document().current_position()); });
   timeline->set_playing(true);
   EXPECT_EQ(timeline->play_interval_ms(), 100);
   ASSERT_TRUE(wait_until([&] { return s.window.document().current_position() >= 4; }, 20000));
@@ -253,8 +254,8 @@ TEST(Studio, PanoramaFollowsTheEquirectConvention) {
   s.window.document().set_current_position(7);
   widgets::PanoramaView* pano = s.window.panorama_view();
   ASSERT_TRUE(wait_until([&] { return pano->shown_position() == 7; }));
-  const cv::Mat frame = cv::imread(
-      QFileInfo(t.project_file).absolutePath().toStdString() + "/" + t.project.path.frames[7].file);
+  const cv::Mat frame = cv::imread(QFileInfo(t.project_file).absolutePath().toStdString() + "/" +
+                                   t.project.path.frames[7].file);
   ASSERT_FALSE(frame.empty());
 
   int matched = 0, mirrored_matched = 0, checks = 0;
@@ -269,7 +270,8 @@ TEST(Studio, PanoramaFollowsTheEquirectConvention) {
       };
       const cv::Vec3f expected = sample(az_deg), mirrored = sample(-az_deg);
       auto close = [&](const cv::Vec3f& bgr) {
-        return std::abs(qRed(c) - bgr[2]) < 14 && std::abs(qGreen(c) - bgr[1]) < 14 && std::abs(qBlue(c) - bgr[0]) < 14;
+        return std::abs(qRed(c) - bgr[2]) < 14 && std::abs(qGreen(c) - bgr[1]) < 14 &&
+               std::abs(qBlue(c) - bgr[0]) < 14;
       };
       ++checks;
       matched += close(expected);
@@ -295,7 +297,8 @@ TEST(Studio, WholeImageModeOutlinesTheHotspots) {
   const double h = w / 2.0;
   const double x0 = (image.width() - w) / 2.0, y0 = (image.height() - h) / 2.0;
   auto at = [&](double az, double el) {
-    return QPoint(static_cast<int>(x0 + (az + 180.0) / 360.0 * w), static_cast<int>(y0 + (90.0 - el) / 180.0 * h));
+    return QPoint(static_cast<int>(x0 + (az + 180.0) / 360.0 * w),
+                  static_cast<int>(y0 + (90.0 - el) / 180.0 * h));
   };
   auto is_outline = [](QRgb c) { return near_colour(c, 255, 200, 40, 30); };
   EXPECT_GT(count_near(image, at(-20, 5), 2, is_outline), 2) << "left edge";
@@ -355,8 +358,8 @@ TEST(Studio, SamplingSliderChangesKeyframesAndUndoRestores) {
   slider->setSliderDown(false);
   EXPECT_EQ(stack->count(), steps_before + 2);
   EXPECT_EQ(static_cast<int>(doc.project().keyframes.indices.size()),
-            std::max(2, static_cast<int>(std::lround(
-                            30.0 / widgets::SamplingPanel::ratio_of_slider(slider->value())))));
+            std::max(2, static_cast<int>(
+                            std::lround(30.0 / widgets::SamplingPanel::ratio_of_slider(slider->value())))));
   stack->undo();
   EXPECT_EQ(doc.project().keyframes.indices, k1);
 }
@@ -450,7 +453,8 @@ TEST(Studio, ComputeVisibilityRunsAsATaskAndIsOneUndoStep) {
   ASSERT_GE(v.cells.size(), 2u);
   EXPECT_EQ(v.cells.front().first_frame, 0);
   EXPECT_EQ(v.cells.back().last_frame, 29);
-  for (std::size_t k = 1; k < v.cells.size(); ++k) EXPECT_LE(v.cells[k - 1].last_frame, v.cells[k].first_frame);
+  for (std::size_t k = 1; k < v.cells.size(); ++k)
+    EXPECT_LE(v.cells[k - 1].last_frame, v.cells[k].first_frame);
   EXPECT_EQ(s.window.document().undo_stack()->count(), 1);
   s.window.document().undo_stack()->undo();
   EXPECT_TRUE(s.window.document().project().visibility.empty());
@@ -463,7 +467,8 @@ TEST(Studio, TrackingRunsOffTheGuiThreadAndCancelsWithinASecond) {
   widgets::TaskRunner runner(doc);
   const Project before = doc.project();
   double last_fraction = 0.0;
-  QObject::connect(&runner, &widgets::TaskRunner::progress, [&](double f, const QString&) { last_fraction = f; });
+  QObject::connect(&runner, &widgets::TaskRunner::progress,
+                   [&](double f, const QString&) { last_fraction = f; });
   QSignalSpy failed(&runner, &widgets::TaskRunner::failed);
   ASSERT_TRUE(runner.start("Track camera path", studio::track_path_task()));
   wait_until([&] { return last_fraction > 0.0 || !runner.is_running(); }, 10000);
@@ -523,7 +528,8 @@ TEST(AutosaveChild, DISABLED_EditThenWaitToBeKilled) {
   Studio s;
   ASSERT_TRUE(s.window.open_project(file));
   s.window.autosave().set_interval(200);
-  s.window.document().undo_stack()->push(new widgets::SetTourTitleCommand(s.window.document(), kRecoveredTitle));
+  s.window.document().undo_stack()->push(
+      new widgets::SetTourTitleCommand(s.window.document(), kRecoveredTitle));
   widgets::SamplingPanel* panel = s.window.sampling_panel();
   panel->method_box()->setCurrentIndex(panel->method_box()->findData("uniform"));  // at once, no cells needed
   panel->budget_slider()->setValue(widgets::SamplingPanel::slider_of_ratio(10.0));
@@ -542,8 +548,9 @@ TEST(Studio, AutosaveRecoversAnEditAfterTheProcessIsKilled) {
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
   env.insert(kChildProjectVariable, t.project_file);
   child.setProcessEnvironment(env);
-  child.start(QCoreApplication::applicationFilePath(),
-              {"--gtest_also_run_disabled_tests", "--gtest_filter=AutosaveChild.DISABLED_EditThenWaitToBeKilled"});
+  child.start(
+      QCoreApplication::applicationFilePath(),
+      {"--gtest_also_run_disabled_tests", "--gtest_filter=AutosaveChild.DISABLED_EditThenWaitToBeKilled"});
   ASSERT_TRUE(child.waitForStarted(10000));
   QByteArray output;
   QElapsedTimer clock;
@@ -552,13 +559,15 @@ TEST(Studio, AutosaveRecoversAnEditAfterTheProcessIsKilled) {
     child.waitForReadyRead(200);
     output += child.readAllStandardOutput();
   }
-  ASSERT_TRUE(output.contains("AUTOSAVED")) << output.toStdString() << child.readAllStandardError().toStdString();
+  ASSERT_TRUE(output.contains("AUTOSAVED"))
+      << output.toStdString() << child.readAllStandardError().toStdString();
   child.kill();  // SIGKILL: no chance to clean up
   ASSERT_TRUE(child.waitForFinished(10000));
   EXPECT_EQ(child.exitStatus(), QProcess::CrashExit);
 
   ASSERT_TRUE(QFile::exists(side));
-  EXPECT_EQ(load_project(t.project_file.toStdString()).tour.title, t.project.tour.title) << "edit was not saved";
+  EXPECT_EQ(load_project(t.project_file.toStdString()).tour.title, t.project.tour.title)
+      << "edit was not saved";
 
   Studio s;
   QString offered;

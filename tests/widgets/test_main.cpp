@@ -1,8 +1,9 @@
 // test_widgets: GoogleTest inside a QApplication (GUI tests run under xvfb-run; Mesa renders in software).
-#include <QApplication>
-#include <QSurfaceFormat>
 #include <QVTKOpenGLNativeWidget.h>
 #include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QSurfaceFormat>
 
 int main(int argc, char** argv) {
   // Before QApplication, so VTK's widgets and the panorama view get a compatible OpenGL context.

@@ -80,7 +80,8 @@ TestProject make(const QString& name) {
   h.frame = 0;
   h.kind = HotspotKind::kEvent;
   h.action = "show_text";
-  for (const auto& [az, el] : std::vector<std::pair<double, double>>{{-20, -10}, {20, -10}, {20, 20}, {-20, 20}})
+  for (const auto& [az, el] :
+       std::vector<std::pair<double, double>>{{-20, -10}, {20, -10}, {20, 20}, {-20, 20}})
     h.image_corners.push_back({az * M_PI / 180.0, el * M_PI / 180.0});
   p.hotspots.push_back(h);
   t.project_file = dir.filePath("test.plenopath");

@@ -1,11 +1,12 @@
 #pragma once
 // The studio's main window for GUI tests: shown at a fixed size and never blocking on a question (crash
 // recovery declined, unsaved changes discarded, error boxes collected in `errors` instead of shown).
+#include <gtest/gtest.h>
+
 #include <QImage>
 #include <QMessageBox>
 #include <QStringList>
 #include <QTest>
-#include <gtest/gtest.h>
 
 #include "app/studio/main_window.h"
 
@@ -17,7 +18,9 @@ struct TestStudio {
   TestStudio() {
     window.ask_recovery = [](const QString&) { return false; };
     window.ask_save_changes = [] { return QMessageBox::Discard; };
-    window.show_error = [this](const QString& title, const QString& message) { errors << title + ": " + message; };
+    window.show_error = [this](const QString& title, const QString& message) {
+      errors << title + ": " + message;
+    };
     window.resize(1400, 900);
     window.show();
     EXPECT_TRUE(QTest::qWaitForWindowExposed(&window));

@@ -1,11 +1,12 @@
 // The studio's Compute visibility on a large plan: Cancel stops it within a second and leaves the document
 // as it was (no undo step).
+#include <gtest/gtest.h>
+
 #include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QSignalSpy>
 #include <QThread>
 #include <QUndoStack>
-#include <gtest/gtest.h>
 
 #include "app/studio/studio_tasks.h"
 #include "widgets/project_document.h"

@@ -1,24 +1,25 @@
 // Walk mode in the studio: it shows the keyframe images (not blank), a walk key moves to the next keyframe
 // and the picture changes, and a click on the map window walks there.
+#include "widgets/walk_view.h"
+
+#include <gtest/gtest.h>
+
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QMessageBox>
-#include <QUndoStack>
 #include <QTest>
 #include <QThread>
-#include <gtest/gtest.h>
+#include <QUndoStack>
 
 #include "model/error.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/frame_provider.h"
 #include "widgets/project_document.h"
-#include "widgets/walk_view.h"
 
 namespace plenopath {
 namespace {
-
 
 // Mean and spread of a grabbed view's grey levels, outside the map window and status line.
 std::pair<double, double> grey_statistics(const QImage& image) {
@@ -54,7 +55,8 @@ TEST(WalkView, ShowsKeyframesAndWalks) {
   EXPECT_EQ(view.navigator().current_keyframe(), 0);
 
   QTest::keyClick(&view, Qt::Key_W);
-  ASSERT_TRUE(test::wait_until([&] { return view.navigator().current_keyframe() == 1 && !view.navigator().moving(); }));
+  ASSERT_TRUE(test::wait_until(
+      [&] { return view.navigator().current_keyframe() == 1 && !view.navigator().moving(); }));
   QImage walked;
   ASSERT_TRUE(test::wait_until([&] {
     walked = view.grabFramebuffer();
@@ -71,7 +73,8 @@ TEST(WalkView, ShowsKeyframesAndWalks) {
     view.update();
     QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
   }
-  std::printf("walk view: %.0f frames/s at %dx%d\n", swaps * 1000.0 / clock.elapsed(), view.width(), view.height());
+  std::printf("walk view: %.0f frames/s at %dx%d\n", swaps * 1000.0 / clock.elapsed(), view.width(),
+              view.height());
 
   // A click on the map window where the last keyframe is drawn walks there.
   const QPointF last = view.map_point(project.path.frames.back().position());
@@ -129,11 +132,13 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   ASSERT_TRUE(export_tour->isEnabled());
   const int undo_steps = window.document().undo_stack()->count();
   export_tour->trigger();
-  ASSERT_TRUE(test::wait_until([&] { return !window.tasks().is_running() && QFile::exists(out + "/tour.json"); }))
-      << errors.join("\n").toStdString();
+  ASSERT_TRUE(test::wait_until([&] {
+    return !window.tasks().is_running() && QFile::exists(out + "/tour.json");
+  })) << errors.join("\n").toStdString();
   EXPECT_TRUE(QFile::exists(out + "/index.html"));
   EXPECT_TRUE(QFile::exists(out + "/images/k000015_full.jpg"));
-  EXPECT_EQ(window.document().undo_stack()->count(), undo_steps);  // nothing to undo: the document is unchanged
+  EXPECT_EQ(window.document().undo_stack()->count(),
+            undo_steps);  // nothing to undo: the document is unchanged
   EXPECT_TRUE(errors.isEmpty()) << errors.join("\n").toStdString();
 
   QAction* walk = action_named(window, "Walk mode");

@@ -1,4 +1,6 @@
 // Drift correction by anchors, against the synthetic walk's ground truth.
+#include "processing/anchors/anchor_refinement.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -6,7 +8,6 @@
 #include <random>
 
 #include "model/error.h"
-#include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "rig/synthetic_camera.h"
 
@@ -40,7 +41,8 @@ CameraPath drifted(const CameraPath& truth, double bias_rad_per_frame, double sc
 
 Anchors anchors_at(const CameraPath& truth, std::vector<std::size_t> positions) {
   Anchors anchors;
-  for (std::size_t i : positions) anchors.push_back({truth.frames[i].index, truth.frames[i].position(), std::nullopt});
+  for (std::size_t i : positions)
+    anchors.push_back({truth.frames[i].index, truth.frames[i].position(), std::nullopt});
   return anchors;
 }
 
@@ -63,10 +65,12 @@ TEST(AnchorRefinement, ThreeAnchorsUndoDrift) {
   ASSERT_EQ(report.residuals.size(), 3u);
   for (const AnchorResidual& r : report.residuals) EXPECT_LT(r.distance_m, 0.05) << "frame " << r.frame;
   // The residuals report what the path really does.
-  for (const Anchor& a : anchors) EXPECT_LT((refined.find_frame(a.frame)->position() - a.position).norm(), 0.05);
+  for (const Anchor& a : anchors)
+    EXPECT_LT((refined.find_frame(a.frame)->position() - a.position).norm(), 0.05);
   // Absolute (unaligned) error too: the anchors put the path on the plan.
   double worst = 0;
-  for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, (refined.frames[i].position() - truth.frames[i].position()).norm());
+  for (std::size_t i = 0; i < n; ++i)
+    worst = std::max(worst, (refined.frames[i].position() - truth.frames[i].position()).norm());
   EXPECT_LT(worst, 0.5);
 }
 
@@ -102,12 +106,14 @@ TEST(AnchorRefinement, PreviewKeepsAnchorsAndStaysConnected) {
   const CameraPath preview = preview_path_with_anchors(drift, anchors);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::printf("preview of 600 frames: %.3f ms\n", ms);
-  for (const Anchor& a : anchors) EXPECT_LT((preview.find_frame(a.frame)->position() - a.position).norm(), 1e-9);
+  for (const Anchor& a : anchors)
+    EXPECT_LT((preview.find_frame(a.frame)->position() - a.position).norm(), 1e-9);
   // Connected: no step longer than three times the drifted path's longest step.
   double longest = 0, longest_preview = 0;
   for (std::size_t i = 1; i < drift.frames.size(); ++i) {
     longest = std::max(longest, (drift.frames[i].position() - drift.frames[i - 1].position()).norm());
-    longest_preview = std::max(longest_preview, (preview.frames[i].position() - preview.frames[i - 1].position()).norm());
+    longest_preview =
+        std::max(longest_preview, (preview.frames[i].position() - preview.frames[i - 1].position()).norm());
   }
   EXPECT_LT(longest_preview, 3 * longest);
   EXPECT_LT(evaluate_path(preview, truth).ate_rms_m, evaluate_path(drift, truth).ate_rms_m);
@@ -127,8 +133,8 @@ TEST(AnchorRefinement, CancelReturnsThePathUnchanged) {
   const CameraPath truth = truth_walk(300);
   const CameraPath drift = drifted(truth, 0.05 * M_PI / 180.0, 1.1);
   AnchorRefinementReport report;
-  const CameraPath out = refine_path_with_anchors(drift, anchors_at(truth, {0, 299}), {}, &report,
-                                                  [](int) { return false; });
+  const CameraPath out =
+      refine_path_with_anchors(drift, anchors_at(truth, {0, 299}), {}, &report, [](int) { return false; });
   EXPECT_TRUE(report.cancelled);
   EXPECT_EQ(out, drift);
 }
@@ -170,7 +176,8 @@ TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
   std::normal_distribution<double> noise(0.0, 1.5);
   std::vector<GpsPrior> gps;
   for (std::size_t i = 0; i < truth.frames.size(); i += 20)
-    gps.push_back({truth.frames[i].index, truth.frames[i].position() + Eigen::Vector2d(noise(rng), noise(rng)), 1.5});
+    gps.push_back(
+        {truth.frames[i].index, truth.frames[i].position() + Eigen::Vector2d(noise(rng), noise(rng)), 1.5});
   const CameraPath clean = refine_path_with_anchors(drift, {}, {}, nullptr, {}, gps);
   gps[5].plan_xy += Eigen::Vector2d(30, 0);
   gps[20].plan_xy += Eigen::Vector2d(0, -30);
@@ -182,8 +189,10 @@ TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
     return std::sqrt(sum / truth.frames.size());
   };
   const double before = rms(drift), after = rms(refined), without_outliers = rms(clean);
-  std::printf("GPS priors only (1.5 m noise, every 20th frame): unaligned RMS error %.2f m -> %.2f m "
-              "(%.2f m without the two 30 m outliers)\n", before, after, without_outliers);
+  std::printf(
+      "GPS priors only (1.5 m noise, every 20th frame): unaligned RMS error %.2f m -> %.2f m "
+      "(%.2f m without the two 30 m outliers)\n",
+      before, after, without_outliers);
   EXPECT_LT(after, before / 2);
   EXPECT_LT(after, 1.5);
   EXPECT_LT(std::abs(after - without_outliers), 0.3);  // the robust loss ignores the outliers
@@ -207,7 +216,8 @@ CameraPath finer(const CameraPath& truth, int factor) {
       f.index = static_cast<int>(out.frames.size());
       f.x = (1 - w) * truth.frames[i].x + w * truth.frames[i + 1].x;
       f.y = (1 - w) * truth.frames[i].y + w * truth.frames[i + 1].y;
-      f.heading = truth.frames[i].heading + w * std::remainder(truth.frames[i + 1].heading - truth.frames[i].heading, 2 * M_PI);
+      f.heading = truth.frames[i].heading +
+                  w * std::remainder(truth.frames[i + 1].heading - truth.frames[i].heading, 2 * M_PI);
       out.frames.push_back(f);
     }
   return out;
@@ -257,8 +267,8 @@ TEST(AnchorRefinement, SamplingRateDoesNotChangeTheCorrection) {
     ate[fine] = std::sqrt(sum / n);
     before[fine] = std::sqrt(sum_before / n);
   }
-  std::printf("same drift per metre: unaligned RMS %.3f -> %.3f m at 8 cm steps, %.3f -> %.3f m at 8 mm\n", before[0],
-              ate[0], before[1], ate[1]);
+  std::printf("same drift per metre: unaligned RMS %.3f -> %.3f m at 8 cm steps, %.3f -> %.3f m at 8 mm\n",
+              before[0], ate[0], before[1], ate[1]);
   EXPECT_LT(ate[0], before[0] / 3);
   EXPECT_LT(ate[1], before[1] / 3);
   EXPECT_LT(std::max(ate[0], ate[1]) / std::min(ate[0], ate[1]), 1.5);
@@ -269,7 +279,8 @@ TEST(AnchorRefinement, SameInputGivesTheSameResultBitForBit) {
   const CameraPath drift = drifted_per_metre(truth, 1.04);
   const Anchors anchors = anchors_at(truth, {0, 450, 899});
   const CameraPath first = refine_path_with_anchors(drift, anchors);
-  for (int run = 0; run < 3; ++run) EXPECT_EQ(refine_path_with_anchors(drift, anchors), first) << "run " << run;
+  for (int run = 0; run < 3; ++run)
+    EXPECT_EQ(refine_path_with_anchors(drift, anchors), first) << "run " << run;
 }
 
 }  // namespace

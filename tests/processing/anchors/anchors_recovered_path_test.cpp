@@ -48,8 +48,8 @@ TEST(AnchorRefinement, ThreeAnchorsUndoDriftInjectedIntoATrackedRenderedWalk) {
 
   EgomotionOptions options;
   options.camera_height_m = 1.6;
-  const EgomotionResult tracked =
-      EgomotionTracker::run(static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
+  const EgomotionResult tracked = EgomotionTracker::run(
+      static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
   ASSERT_EQ(tracked.path.size(), truth.size());
   const std::size_t n = truth.size();
 
@@ -64,10 +64,11 @@ TEST(AnchorRefinement, ThreeAnchorsUndoDriftInjectedIntoATrackedRenderedWalk) {
   const PathErrors own = evaluate_path(tracked.path, truth);
   const PathErrors before = evaluate_path(drifted, truth);
   const PathErrors after = evaluate_path(refined, truth);
-  std::printf("tracked walk of %zu frames (%.1f m): tracker ATE %.3f m; with injected drift %.3f m; refined with "
-              "3 anchors %.3f m (%.1fx lower)\n",
-              n, before.truth_length_m, own.ate_rms_m, before.ate_rms_m, after.ate_rms_m,
-              before.ate_rms_m / after.ate_rms_m);
+  std::printf(
+      "tracked walk of %zu frames (%.1f m): tracker ATE %.3f m; with injected drift %.3f m; refined with "
+      "3 anchors %.3f m (%.1fx lower)\n",
+      n, before.truth_length_m, own.ate_rms_m, before.ate_rms_m, after.ate_rms_m,
+      before.ate_rms_m / after.ate_rms_m);
   EXPECT_GT(before.ate_rms_m / after.ate_rms_m, 5.0);
   for (const Anchor& a : anchors) {
     const double off = (refined.find_frame(a.frame)->position() - a.position).norm();

@@ -1,6 +1,9 @@
 // The tour package: contents, tour.json round trip, images against the source frames, interop files against
 // hand-computed values, safety of paths inside the package, and failure modes.
+#include "processing/export/tour_export.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -9,11 +12,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
-#include <unistd.h>
 
 #include "model/error.h"
 #include "model/json_reader.h"
-#include "processing/export/tour_export.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/zip_writer.h"
 #include "processing/frame_source.h"
@@ -26,7 +27,8 @@ namespace fs = std::filesystem;
 
 // One folder per process: ctest runs each test of this suite as its own process, in parallel.
 fs::path test_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("plenopath_export_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("plenopath_export_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -64,7 +66,8 @@ Project make_rendered_project(const fs::path& dir, int frame_count = 12, int wid
   p.visibility.cells = {{0, 5, 0.0, 0.4, 0.4, 20.0, 21.0}, {5, frame_count - 1, 0.4, 0.8, 0.4, 30.0, 29.0}};
 
   const PathFrame& f0 = walk.frames.front();
-  const Eigen::Vector2d ahead = f0.position() + 2.0 * Eigen::Vector2d(std::cos(f0.heading), std::sin(f0.heading));
+  const Eigen::Vector2d ahead =
+      f0.position() + 2.0 * Eigen::Vector2d(std::cos(f0.heading), std::sin(f0.heading));
   const Eigen::Vector2d side(-std::sin(f0.heading), std::cos(f0.heading));
   cv::imwrite((dir / "poster.png").string(), cv::Mat(32, 48, CV_8UC3, cv::Scalar(0, 0, 255)));
   Hotspot tv;
@@ -220,17 +223,19 @@ TEST_F(TourExportTest, TourJsonValidatesAgainstTheSchema) {
   options.max_size = 128;
   options.preview_size = 64;
   export_tour(*project_, options);
-  const std::string cmd = "/usr/bin/python3 -c \"import json,jsonschema,sys; "
-                          "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
-                          options.output + "/tour.json' '" + options.output + "/tour.schema.json'";
+  const std::string cmd =
+      "/usr/bin/python3 -c \"import json,jsonschema,sys; "
+      "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+      options.output + "/tour.json' '" + options.output + "/tour.schema.json'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   // And a broken document is rejected by the same schema.
   nlohmann::json bad = read_json_file(options.output + "/tour.json");
   bad["keyframes"][0]["preview"] = "../../etc/passwd";
   std::ofstream(options.output + "/bad.json") << bad.dump();
-  const std::string bad_cmd = "/usr/bin/python3 -c \"import json,jsonschema,sys; "
-                              "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
-                              options.output + "/bad.json' '" + options.output + "/tour.schema.json' 2>/dev/null";
+  const std::string bad_cmd =
+      "/usr/bin/python3 -c \"import json,jsonschema,sys; "
+      "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+      options.output + "/bad.json' '" + options.output + "/tour.schema.json' 2>/dev/null";
   EXPECT_NE(std::system(bad_cmd.c_str()), 0);
 }
 
@@ -241,9 +246,11 @@ TEST_F(TourExportTest, ZipPackageIsReadableByAnIndependentUnzip) {
   options.preview_size = 64;
   const TourExportReport report = export_tour(*project_, options);
   EXPECT_EQ(report.package_bytes, fs::file_size(options.output));
-  const std::string cmd = "/usr/bin/python3 -c \"import zipfile,sys; z=zipfile.ZipFile(sys.argv[1]); "
-                          "assert z.testzip() is None; n=z.namelist(); assert 'tour.json' in n and 'index.html' in n, n; "
-                          "assert len(n) == " + std::to_string(report.files.size()) + ", len(n)\" '" + options.output + "'";
+  const std::string cmd =
+      "/usr/bin/python3 -c \"import zipfile,sys; z=zipfile.ZipFile(sys.argv[1]); "
+      "assert z.testzip() is None; n=z.namelist(); assert 'tour.json' in n and 'index.html' in n, n; "
+      "assert len(n) == " +
+      std::to_string(report.files.size()) + ", len(n)\" '" + options.output + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
@@ -253,7 +260,8 @@ TEST_F(TourExportTest, CancelLeavesNoPackage) {
   options.max_size = 128;
   options.preview_size = 64;
   int calls = 0;
-  EXPECT_THROW(export_tour(*project_, options, [&](double, const std::string&) { return ++calls < 3; }), Error);
+  EXPECT_THROW(export_tour(*project_, options, [&](double, const std::string&) { return ++calls < 3; }),
+               Error);
   EXPECT_FALSE(fs::exists(options.output));
   EXPECT_FALSE(fs::exists(options.output + ".partial"));
 }
@@ -287,7 +295,8 @@ TEST(TourInterop, PannellumLinksPointAtTheNeighbours) {
   Project p;
   p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 0.0, 1.0, M_PI / 2, 1.0, 0, ""}};
   p.keyframes.indices = {0, 1};
-  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", ""}, {1, "p1.jpg", "f1.jpg", "", ""}};
+  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", ""},
+                                                  {1, "p1.jpg", "f1.jpg", "", ""}};
   const nlohmann::json config = pannellum_config(p, images);
   const auto& a = config["scenes"]["k0"]["hotSpots"];
   ASSERT_EQ(a.size(), 1u);
@@ -305,7 +314,8 @@ TEST(TourInterop, GeoJsonPlacesThePathOnEarth) {
   // parallel arc lengths on WGS84, hand-computed from the series 111132.954 - 559.822 cos 2phi + ...).
   Project p;
   p.geo = {true, 48.0, 2.0, 0.0, 0.0, 1.0, {0.0, 0.0}};
-  p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 0.0, 111.1903, 0.0, 1.0, 0, ""},
+  p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""},
+                   {1, "", 0.0, 111.1903, 0.0, 1.0, 0, ""},
                    {2, "", 74.6252, 0.0, 0.0, 1.0, 0, ""}};
   p.keyframes.indices = {0, 1};
   const nlohmann::json g = path_geojson(p);
@@ -315,11 +325,12 @@ TEST(TourInterop, GeoJsonPlacesThePathOnEarth) {
   EXPECT_NEAR(line[1][1].get<double>(), 48.001, 2e-7);  // 111.19 m north
   EXPECT_NEAR(line[1][0].get<double>(), 2.0, 1e-9);
   EXPECT_NEAR(line[2][0].get<double>(), 2.001, 2e-7);  // 74.63 m east
-  EXPECT_EQ(g["features"].size(), 3u);                    // the line and two keyframes
+  EXPECT_EQ(g["features"].size(), 3u);                 // the line and two keyframes
   // A plan rotated by 90 deg: plan +X points north.
   p.geo.plan_rotation = M_PI / 2;
   const nlohmann::json r = path_geojson(p);
-  EXPECT_NEAR(r["features"][0]["geometry"]["coordinates"][2][1].get<double>(), 48.0 + 74.6252 / 111190.3, 2e-7);
+  EXPECT_NEAR(r["features"][0]["geometry"]["coordinates"][2][1].get<double>(), 48.0 + 74.6252 / 111190.3,
+              2e-7);
   p.geo.valid = false;
   EXPECT_THROW(path_geojson(p), Error);
 }
@@ -366,8 +377,9 @@ TEST(TourPlayer, WalksAndReactsInHeadlessChromium) {
   options.max_size = 1024;
   options.preview_size = 256;
   export_tour(p, options);
-  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) + "/tests/app/player_check.py' '" +
-                          options.output + "' '" + (work / "player").string() + "' --xss-title '" + xss + "'";
+  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) +
+                          "/tests/app/player_check.py' '" + options.output + "' '" +
+                          (work / "player").string() + "' --xss-title '" + xss + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
@@ -380,9 +392,8 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   fs::create_directories(work);
   Project p = make_rendered_project(work / "capture", 12, 1024);
   // Twelve frames at 8 fps, 1.5 s: red to blue, so consecutive frames differ.
-  const auto frames = FrameSource::from_generator(12, 64, 48, 8.0, [](int k) {
-    return cv::Mat(48, 64, CV_8UC3, cv::Scalar(20 * k, 40, 240 - 20 * k));
-  });
+  const auto frames = FrameSource::from_generator(
+      12, 64, 48, 8.0, [](int k) { return cv::Mat(48, 64, CV_8UC3, cv::Scalar(20 * k, 40, 240 - 20 * k)); });
   const std::string doors = (work / "doors.mp4").string();
   encode_video(*frames, doors);
   Hotspot& tv = p.hotspots[0];
@@ -396,8 +407,9 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   options.preview_size = 256;
   const TourExportReport report = export_tour(p, options);
   for (const std::string& w : report.warnings) EXPECT_EQ(w.find("Lift doors"), std::string::npos) << w;
-  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) + "/tests/app/player_check.py' '" +
-                          options.output + "' '" + (work / "player").string() + "' --swap-sequence";
+  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) +
+                          "/tests/app/player_check.py' '" + options.output + "' '" +
+                          (work / "player").string() + "' --swap-sequence";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 

@@ -1,12 +1,13 @@
 // Hotspot geometry against the synthetic renderer's own posters: a poster marked in one frame, lifted onto
 // its wall (from the plan or from depth), lands within 1 px of where the renderer draws it 2 m further on.
+#include "processing/hotspots/hotspot_geometry.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "model/error.h"
-#include "processing/hotspots/hotspot_geometry.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
@@ -24,7 +25,8 @@ const Fixture& fixture() {
   return f;
 }
 
-std::vector<Eigen::Vector3d> poster_corners(const SyntheticScene& scene, const SceneFace& face, const ScenePoster& p) {
+std::vector<Eigen::Vector3d> poster_corners(const SyntheticScene& scene, const SceneFace& face,
+                                            const ScenePoster& p) {
   const Eigen::Vector2d along = (face.b - face.a).normalized();
   auto at = [&](double u, double z) {
     const Eigen::Vector2d xy = face.a + u * along;
@@ -129,8 +131,8 @@ TEST(HotspotGeometry, PosterLiftedOntoItsWallReprojectsWithinOnePixel) {
   EXPECT_TRUE(quad.warning.empty()) << quad.warning;
   const double error = max_reprojection_error_px(c, quad, h);
   RecordProperty("max_reprojection_px", std::to_string(error));
-  std::printf("poster lifted onto its wall: max reprojection error %.3f px at %dx%d, frames %d -> %d\n", error,
-              kWidth, kHeight, c.a.index, c.b.index);
+  std::printf("poster lifted onto its wall: max reprojection error %.3f px at %dx%d, frames %d -> %d\n",
+              error, kWidth, kHeight, c.a.index, c.b.index);
   EXPECT_LT(error, 1.0);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_LT((quad.corners[i] - c.truth[i]).norm(), 0.02) << i;
 }
@@ -212,8 +214,10 @@ TEST(HotspotGeometry, MediaWarpsOntoTheQuadInAPanorama) {
   EXPECT_GT(painted, 50);
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const auto& t : c.truth) centre += t / 4.0;
-  const Eigen::Vector3d top_left = c.truth[0] + 0.25 * (c.truth[1] - c.truth[0]) + 0.25 * (c.truth[3] - c.truth[0]);
-  const Eigen::Vector3d bottom_right = c.truth[0] + 0.75 * (c.truth[1] - c.truth[0]) + 0.75 * (c.truth[3] - c.truth[0]);
+  const Eigen::Vector3d top_left =
+      c.truth[0] + 0.25 * (c.truth[1] - c.truth[0]) + 0.25 * (c.truth[3] - c.truth[0]);
+  const Eigen::Vector3d bottom_right =
+      c.truth[0] + 0.75 * (c.truth[1] - c.truth[0]) + 0.75 * (c.truth[3] - c.truth[0]);
   auto pixel = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector2d px = project_to_equirect(p, c.b, h, kWidth, kHeight);
     return frame.at<cv::Vec3b>(static_cast<int>(px.y()), static_cast<int>(px.x()));
@@ -230,10 +234,10 @@ TEST(HotspotGeometry, BadInputGetsClearErrors) {
   const PathFrame pose{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""};
   FloorPlan empty;
   const std::vector<SphericalAngles> quad = {{0.1, 0.1}, {-0.1, 0.1}, {-0.1, -0.1}, {0.1, -0.1}};
-  EXPECT_THROW(lift_quad_to_wall(quad, pose, empty), Error);                        // no wall
+  EXPECT_THROW(lift_quad_to_wall(quad, pose, empty), Error);                               // no wall
   EXPECT_THROW(lift_quad_to_wall({{0.1, 0.1}, {0.2, 0.1}}, pose, fixture().plan), Error);  // two corners
   EXPECT_THROW(lift_quad_to_wall({{0, M_PI / 2}, {1, M_PI / 2}, {2, M_PI / 2}}, pose, fixture().plan), Error);
-  EXPECT_THROW(lift_quad_from_depth(quad, pose, cv::Mat()), Error);                 // no depth
+  EXPECT_THROW(lift_quad_from_depth(quad, pose, cv::Mat()), Error);                                // no depth
   EXPECT_THROW(lift_quad_from_depth(quad, pose, cv::Mat(64, 128, CV_32F, cv::Scalar(0))), Error);  // no hit
   HotspotLiftOptions bad;
   bad.camera_height_m = 0;

@@ -1,12 +1,13 @@
 // Placing hotspot quads in a hand-made room: 8 m x 5 m (walls x = 0, x = 8, y = 0, y = 5) with a half wall
 // x = 4, y 0..2.5. The camera is 1.6 m up. Truth is the room's known wall planes and points picked on them.
+#include "processing/hotspots/hotspot_placement.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "model/error.h"
 #include "processing/hotspots/hotspot_geometry.h"
-#include "processing/hotspots/hotspot_placement.h"
 
 namespace plenopath {
 namespace {
@@ -56,7 +57,8 @@ TEST(HotspotPlacement, SnapsToTheWallItLiesOn) {
   EXPECT_EQ(placed.quad.wall_segment, 1);
   EXPECT_NE(placed.message.find("wall"), std::string::npos);
   ASSERT_EQ(placed.quad.corners.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i) EXPECT_LT((placed.quad.corners[i] - east_poster()[i]).norm(), 1e-9) << i;
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_LT((placed.quad.corners[i] - east_poster()[i]).norm(), 1e-9) << i;
   EXPECT_NEAR(std::abs(placed.quad.normal.x()), 1.0, 1e-12);
 }
 
@@ -88,7 +90,8 @@ TEST(HotspotPlacement, FallsBackToAPlaneFacingTheCameraAndSaysSo) {
   EXPECT_FALSE(placed.quad.warning.empty());
   // Mean direction is +x, so the plane is x = 1 + 3 = 4; each corner stays on its marked ray (scaled by 3/8).
   for (std::size_t i = 0; i < 4; ++i) {
-    const Eigen::Vector3d expected = Eigen::Vector3d(1, 3.5, kHeight) + 3.0 / 8.0 * (far[i] - Eigen::Vector3d(1, 3.5, kHeight));
+    const Eigen::Vector3d expected =
+        Eigen::Vector3d(1, 3.5, kHeight) + 3.0 / 8.0 * (far[i] - Eigen::Vector3d(1, 3.5, kHeight));
     EXPECT_LT((placed.quad.corners[i] - expected).norm(), 1e-9) << i;
   }
 }

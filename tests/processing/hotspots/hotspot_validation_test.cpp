@@ -1,16 +1,17 @@
 // Hotspot validation: each kind of problem an author can make gives a warning naming the hotspot and the
 // field, and a clean hotspot gives none. Media files are made here (a real PNG, a file of garbage bytes).
+#include "processing/hotspots/hotspot_validation.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
-#include <unistd.h>
 
-#include "processing/hotspots/hotspot_geometry.h"
-#include "processing/hotspots/hotspot_validation.h"
 #include "model/error.h"
+#include "processing/hotspots/hotspot_geometry.h"
 
 namespace plenopath {
 namespace {
@@ -26,7 +27,8 @@ struct Files {
     good_png = (dir / "poster.png").string();
     cv::imwrite(good_png, cv::Mat(16, 24, CV_8UC3, cv::Scalar(20, 200, 40)));
     good_video = (dir / "doors.avi").string();
-    cv::VideoWriter doors(good_video, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0, cv::Size(32, 24));
+    cv::VideoWriter doors(good_video, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0,
+                          cv::Size(32, 24));
     for (int k = 0; k < 5; ++k) doors.write(cv::Mat(24, 32, CV_8UC3, cv::Scalar(40 * k, 80, 200)));
     doors.release();
     broken_png = (dir / "broken.png").string();

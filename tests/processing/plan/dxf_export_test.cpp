@@ -1,11 +1,12 @@
 // The DXF writer against the DXF importer: the office sample written in millimetres reads back as the same
 // plan (in metres) that flatten_drawing builds in code.
+#include "processing/plan/dxf_export.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "model/error.h"
-#include "processing/plan/dxf_export.h"
 #include "processing/plan/dxf_import.h"
 #include "rig/plan_drawing.h"
 #include "rig/synthetic_camera.h"
@@ -43,7 +44,8 @@ TEST(DxfExport, OfficeSampleReadsBackInMetres) {
   for (const auto& l : built.labels) {
     bool found = false;
     for (const auto& m : imported.labels)
-      found = found || (m.text == l.text && (m.position - l.position).norm() < 1e-6 && std::abs(m.height - l.height) < 1e-6);
+      found = found || (m.text == l.text && (m.position - l.position).norm() < 1e-6 &&
+                        std::abs(m.height - l.height) < 1e-6);
     EXPECT_TRUE(found) << l.text;
   }
   const PlanLayer* walls = imported.find_layer("WALLS");
@@ -57,12 +59,14 @@ TEST(DxfExport, RendersTheSameWallsAsTheBuiltInPlan) {
   write_dxf(make_office_sample_drawing(), file, {"m"});
   const SyntheticScene from_dxf = build_synthetic_scene(import_dxf(file));
   const SyntheticScene built = build_synthetic_scene(make_office_sample_plan());
-  EXPECT_EQ(from_dxf.footprints.size(), built.footprints.size());  // furniture inserts arrive as closed outlines
+  EXPECT_EQ(from_dxf.footprints.size(),
+            built.footprints.size());  // furniture inserts arrive as closed outlines
   RenderOptions options;
   options.width = 128;
   options.height = 64;
   const PathFrame pose{0, "", 4.0, 7.5, 0.0, 1.0, kFrameOk, ""};  // the corridor: walls and doorways only
-  const cv::Mat a = render_panorama(from_dxf, pose, options).depth, b = render_panorama(built, pose, options).depth;
+  const cv::Mat a = render_panorama(from_dxf, pose, options).depth,
+                b = render_panorama(built, pose, options).depth;
   cv::Mat diff;
   cv::absdiff(a, b, diff);
   EXPECT_LT(cv::countNonZero(diff > 1e-4), 10);  // the importer may split segments; surfaces stay put

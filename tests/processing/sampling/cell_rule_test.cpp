@@ -44,9 +44,9 @@ TEST(CellRule, MassesAreLengthToTheExponentOverSize) {
   CellRuleOptions o;
   o.exponent = 3.0;
   const auto m = cell_masses(cells, o);
-  EXPECT_DOUBLE_EQ(m[0], 2.0);   // 2^3 / 4
-  EXPECT_DOUBLE_EQ(m[1], 2.0);   // 4^3 / 32
-  EXPECT_DOUBLE_EQ(m[2], 8.0);   // 2^3 / 1
+  EXPECT_DOUBLE_EQ(m[0], 2.0);  // 2^3 / 4
+  EXPECT_DOUBLE_EQ(m[1], 2.0);  // 4^3 / 32
+  EXPECT_DOUBLE_EQ(m[2], 8.0);  // 2^3 / 1
   o.exponent = 1.0;
   const auto m1 = cell_masses(cells, o);
   EXPECT_DOUBLE_EQ(m1[1], 0.125);
@@ -125,7 +125,8 @@ TEST(CellRule, TransitionBoostAddsKeyframesAtBigChanges) {
   const double added = 2.0 * std::log(32.0) / 8.0 * 2.0 + 2.0 * std::log(8.0) / 8.0 * 2.0;
   EXPECT_NEAR(d.total_mass(), 1.0 + added, 1e-9);
   // On [6, 6.5]: the last cell's own density (mass 2 of 2.625 over 2 m) plus the boost.
-  EXPECT_NEAR(d.mass_at(6.5) - d.mass_at(6.0), 0.5 * (2.0 / 2.625 / 2.0) + 0.5 * 2.0 * std::log(32.0) / 8.0, 1e-9);
+  EXPECT_NEAR(d.mass_at(6.5) - d.mass_at(6.0), 0.5 * (2.0 / 2.625 / 2.0) + 0.5 * 2.0 * std::log(32.0) / 8.0,
+              1e-9);
 }
 
 // On a real plan, the cells the index finds get the counts the rule gives for their own l and v.
@@ -149,7 +150,9 @@ TEST(CellRule, FollowsTheRuleOnAPlan) {
   ASSERT_EQ(k.indices.size(), 60u);
   // Expected count per cell, by hand from its l and v: its share of the 59 steps between the ends.
   // v is the cell's mean envelope area (its middle's when the mean was not measured).
-  auto v = [](const VisibilityCell& c) { return std::max(c.area_mean > 0.0 ? c.area_mean : c.area_mid, 0.01); };
+  auto v = [](const VisibilityCell& c) {
+    return std::max(c.area_mean > 0.0 ? c.area_mean : c.area_mid, 0.01);
+  };
   double total = 0.0;
   for (const auto& c : cells.cells) total += c.length * c.length / v(c);
   for (const auto& c : cells.cells) {

@@ -88,7 +88,8 @@ TEST(DepthSampler, RenderedDepthFindsTheDoor) {
   const std::vector<SamplingCell> cells = sampling_cells_from_depth(path, volumes);
   ASSERT_GE(cells.size(), 2u);
   double nearest = 1e9;  // cell boundary nearest the door (x = 3, s = 2.5)
-  for (std::size_t c = 1; c < cells.size(); ++c) nearest = std::min(nearest, std::abs(cells[c].s_begin - 2.5));
+  for (std::size_t c = 1; c < cells.size(); ++c)
+    nearest = std::min(nearest, std::abs(cells[c].s_begin - 2.5));
   EXPECT_LT(nearest, 1.0);
   SamplingParameters p;
   p.method = "depth";
@@ -106,12 +107,14 @@ TEST(DepthSampler, EnvelopeFromDepthMatchesThePlan) {
   render.width = 512;
   render.height = 256;
   render.threads = 1;
-  for (const auto& [x, y, heading] : {std::tuple{3.0, 2.0, 0.0}, std::tuple{8.0, 1.0, 2.0}, std::tuple{13.0, 2.5, -1.2}}) {
+  for (const auto& [x, y, heading] :
+       {std::tuple{3.0, 2.0, 0.0}, std::tuple{8.0, 1.0, 2.0}, std::tuple{13.0, 2.5, -1.2}}) {
     const PathFrame pose{0, "", x, y, heading, 1.0, kFrameOk, ""};
     const Envelope from_depth = envelope_from_depth(render_panorama(scene, pose, render).depth, pose);
     const Envelope from_plan = index.envelope(pose.position());
     ASSERT_EQ(from_depth.status, EnvelopeStatus::ok);
-    EXPECT_GT(polygon_iou(from_depth.polygon, from_plan.polygon), 0.97) << x << ", " << y << " heading " << heading;
+    EXPECT_GT(polygon_iou(from_depth.polygon, from_plan.polygon), 0.97)
+        << x << ", " << y << " heading " << heading;
     EXPECT_NEAR(from_depth.area, from_plan.area, 0.04 * from_plan.area);
   }
   EXPECT_THROW(envelope_from_depth(cv::Mat(4, 8, CV_16U), PathFrame{}), Error);

@@ -58,7 +58,9 @@ const std::vector<Method> kMethods = {{"uniform", VisibilityRule::expected_loss}
                                       {"visibility", VisibilityRule::cell_rule},
                                       {"depth", VisibilityRule::expected_loss}};
 
-std::string label(const Method& m) { return m.name + (m.name == "visibility" ? std::string("/") + to_string(m.rule) : ""); }
+std::string label(const Method& m) {
+  return m.name + (m.name == "visibility" ? std::string("/") + to_string(m.rule) : "");
+}
 
 void expect_valid(const CameraPath& path, const Keyframes& k, const std::string& what) {
   ASSERT_FALSE(k.indices.empty()) << what;
@@ -90,7 +92,8 @@ TEST(KeyframeSampler, BudgetsAreMetExactly) {
       p.method = m.name;
       p.ratio = ratio;
       const Keyframes k = sample_keyframes(f.inputs, p);
-      EXPECT_EQ(static_cast<int>(k.indices.size()), keyframe_budget(p, 341)) << label(m) << " ratio " << ratio;
+      EXPECT_EQ(static_cast<int>(k.indices.size()), keyframe_budget(p, 341))
+          << label(m) << " ratio " << ratio;
     }
   }
 }
@@ -110,7 +113,8 @@ TEST(KeyframeSampler, PinnedFramesAreKeptWithinTheBudget) {
     EXPECT_EQ(k.pinned, pinned);
     // Pinned frames are ranked right after the ends.
     const std::vector<int> order = k.progressive_order();
-    EXPECT_EQ(std::set<int>(order.begin() + 2, order.begin() + 6), std::set<int>(pinned.begin(), pinned.end()))
+    EXPECT_EQ(std::set<int>(order.begin() + 2, order.begin() + 6),
+              std::set<int>(pinned.begin(), pinned.end()))
         << label(m);
     expect_valid(f.path, k, label(m));
   }
@@ -192,7 +196,8 @@ TEST(KeyframeSampler, EveryPrefixIsAGoodSampling) {
       std::sort(prefix.indices.begin(), prefix.indices.end());
       EXPECT_EQ(prefix.indices.front(), 0) << label(m) << " prefix " << size;
       EXPECT_EQ(prefix.indices.back(), 340) << label(m) << " prefix " << size;
-      EXPECT_EQ(std::set<int>(prefix.indices.begin(), prefix.indices.end()).size(), static_cast<std::size_t>(size));
+      EXPECT_EQ(std::set<int>(prefix.indices.begin(), prefix.indices.end()).size(),
+                static_cast<std::size_t>(size));
       p.count = size;
       const Keyframes direct = sample_keyframes(f.inputs, p);
       const double prefix_loss = geometric_loss(f.path, prefix, f.envelopes).mean;

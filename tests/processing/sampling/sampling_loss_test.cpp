@@ -24,7 +24,8 @@ bool inside(const Polygon& poly, const Eigen::Vector2d& q) {  // even-odd, the o
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
     if ((poly[i].y() > q.y()) != (poly[j].y() > q.y()) &&
-        q.x() < poly[i].x() + (q.y() - poly[i].y()) * (poly[j].x() - poly[i].x()) / (poly[j].y() - poly[i].y()))
+        q.x() <
+            poly[i].x() + (q.y() - poly[i].y()) * (poly[j].x() - poly[i].x()) / (poly[j].y() - poly[i].y()))
       in = !in;
   return in;
 }
@@ -38,7 +39,8 @@ double grid_iou(const Polygon& a, const Polygon& b) {
   long both = 0, any = 0;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      const Eigen::Vector2d q(lo.x() + (i + 0.5) * (hi.x() - lo.x()) / n, lo.y() + (j + 0.5) * (hi.y() - lo.y()) / n);
+      const Eigen::Vector2d q(lo.x() + (i + 0.5) * (hi.x() - lo.x()) / n,
+                              lo.y() + (j + 0.5) * (hi.y() - lo.y()) / n);
       const bool ia = inside(a, q), ib = inside(b, q);
       both += ia && ib;
       any += ia || ib;
@@ -143,8 +145,8 @@ TEST(SamplingLoss, GeometricLossByHand) {
   // Frames 1..4 stand in by 0 (shift 0.5 i), frames 5..7 by 8 (shift 0.5 (8 - i)).
   // IoU of unit squares shifted by d < 1: (1 - d) / (1 + d); shift >= 1: 0.
   auto iou = [](double d) { return d >= 1.0 ? 0.0 : (1 - d) / (1 + d); };
-  std::vector<double> losses = {1 - iou(0.5), 1 - iou(1.0), 1 - iou(1.5), 1 - iou(2.0), 1 - iou(1.5), 1 - iou(1.0),
-                                1 - iou(0.5)};
+  std::vector<double> losses = {1 - iou(0.5), 1 - iou(1.0), 1 - iou(1.5), 1 - iou(2.0),
+                                1 - iou(1.5), 1 - iou(1.0), 1 - iou(0.5)};
   double mean = 0;
   for (double l : losses) mean += l / 7;
   const GeometricLoss by_hand = geometric_loss(path, k, shifted);
@@ -212,7 +214,8 @@ TEST(ImageSimilarity, PhotometricLossOfARotatedCopyIsPerfect) {
   // Every frame is the same place seen with a different heading: a turned copy of one panorama.
   const cv::Mat pano = random_panorama(256, 128, 9);
   CameraPath path;
-  for (int i = 0; i < 10; ++i) path.frames.push_back({i, "", 0.0, 0.0, i * 2 * M_PI / 256 * 7, 1.0, kFrameOk, ""});
+  for (int i = 0; i < 10; ++i)
+    path.frames.push_back({i, "", 0.0, 0.0, i * 2 * M_PI / 256 * 7, 1.0, kFrameOk, ""});
   auto read = [&](int index) { return rotate_to_heading(pano, 0.0, path.frames[index].heading); };
   Keyframes k;
   k.indices = {0, 9};

@@ -1,9 +1,10 @@
+#include "processing/walk/walk_navigator.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "model/error.h"
-#include "processing/walk/walk_navigator.h"
 
 namespace plenopath {
 namespace {
