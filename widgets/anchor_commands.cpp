@@ -6,7 +6,7 @@
 #include "model/error.h"
 #include "model/project.h"
 #include "processing/anchors/anchor_refinement.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {

@@ -5,7 +5,7 @@
 #include <QDialog>
 #include <string>
 
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 
 class QDoubleSpinBox;
 class QLineEdit;

@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "widgets/plan_preview.h"
 
 namespace plenopath::widgets {

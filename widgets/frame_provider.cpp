@@ -4,8 +4,8 @@
 #include <exception>
 #include <opencv2/imgproc.hpp>
 
-#include "processing/frame_cache.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_cache.h"
+#include "processing/capture/frame_source.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {

@@ -14,7 +14,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "model/error.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "processing/hotspots/hotspot_geometry.h"
 #include "processing/hotspots/hotspot_placement.h"
 #include "processing/hotspots/hotspot_validation.h"

@@ -20,7 +20,7 @@
 #include "model/error.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_session.h"
-#include "processing/uniform_sampling.h"
+#include "processing/sampling/uniform_sampling.h"
 #include "widgets/document_commands.h"
 #include "widgets/project_document.h"
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "processing/frame_source.h"
-#include "processing/gps_track.h"
+#include "processing/capture/frame_source.h"
+#include "processing/capture/gps_track.h"
 
 namespace plenopath::cli {
 namespace {

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "processing/frame_source.h"
-#include "processing/video_encode.h"
+#include "processing/capture/frame_source.h"
+#include "processing/capture/video_encode.h"
 
 namespace plenopath::cli {
 

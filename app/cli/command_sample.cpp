@@ -15,12 +15,12 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"
-#include "processing/uniform_sampling.h"
-#include "processing/visibility.h"
+#include "processing/sampling/uniform_sampling.h"
+#include "processing/visibility/visibility.h"
 
 namespace plenopath::cli {
 

@@ -10,7 +10,7 @@
 #include "app/cli/command.h"
 #include "app/cli/render_common.h"
 #include "model/error.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "rig/multi_head_rig.h"
 
 namespace plenopath::cli {

@@ -19,7 +19,7 @@
 #include "model/path_io.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/egomotion.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 
 namespace plenopath::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "processing/plan/dxf_import.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 
 namespace plenopath::cli {
 

@@ -3,7 +3,7 @@
 #include <QtConcurrent>
 #include <exception>
 
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "widgets/map_view.h"
 #include "widgets/project_document.h"
 

@@ -4,9 +4,9 @@
 #include <exception>
 
 #include "app/studio/envelope_service.h"
-#include "processing/depth_volume.h"
-#include "processing/frame_source.h"
-#include "processing/visibility.h"
+#include "processing/sampling/depth_volume.h"
+#include "processing/capture/frame_source.h"
+#include "processing/visibility/visibility.h"
 #include "widgets/project_document.h"
 #include "widgets/timeline.h"
 

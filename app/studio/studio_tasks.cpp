@@ -6,8 +6,8 @@
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/egomotion.h"
-#include "processing/frame_source.h"
-#include "processing/visibility.h"
+#include "processing/capture/frame_source.h"
+#include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/project_document.h"
 

@@ -11,7 +11,7 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
 // The camera path from the capture's frames alone (processing/egomotion): progress and cancel reach Ceres
 // through the tracker's callback. Scale from the capture's camera height when known.
 widgets::TaskFunction track_path_task();
-// Visibility events, cells and critical lines along the path (processing/visibility.h).
+// Visibility events, cells and critical lines along the path (processing/visibility/visibility.h).
 widgets::TaskFunction compute_visibility_task();
 // The path refined with the anchors as priors (Ceres pose graph with a drift model, plus the capture's GPS
 // fixes as weak priors when there are any; processing/anchors/anchor_refinement.h). Progress per solver

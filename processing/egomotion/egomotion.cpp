@@ -12,7 +12,8 @@
 
 #include "model/error.h"
 #include "processing/egomotion/bearing_cost.h"
-#include "processing/egomotion/median.h"
+#include "processing/util/grey_image.h"
+#include "processing/util/statistics.h"
 
 namespace plenopath {
 namespace {
@@ -168,18 +169,7 @@ void EgomotionTracker::add_frame(const cv::Mat& bgr) {
   if (bgr.empty()) throw Error("egomotion: frame " + std::to_string(s.rings.size()) + " is empty");
   if (bgr.cols != 2 * bgr.rows)
     throw Error("egomotion: frame " + std::to_string(s.rings.size()) + " is not equirectangular 2:1");
-  cv::Mat gray;
-  if (bgr.channels() == 3) {
-    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
-  } else {
-    gray = bgr;
-  }
-  const int target = s.options.klt.work_width > 0 ? std::min(s.options.klt.work_width, gray.cols) : gray.cols;
-  if (target != gray.cols) {
-    cv::Mat small;
-    cv::resize(gray, small, cv::Size(target, target / 2), 0, 0, cv::INTER_AREA);
-    gray = small;
-  }
+  const cv::Mat gray = equirect_at_width(grey_image(bgr, "egomotion"), s.options.klt.work_width);
   s.rings.push_back(make_ring_image(gray, s.options.ring));
   // The turn since the previous frame, from the rings, starts the KLT search (fast turns).
   double predicted_shift = 0.0;

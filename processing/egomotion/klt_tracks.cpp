@@ -9,7 +9,8 @@
 #include <sstream>
 
 #include "model/error.h"
-#include "processing/egomotion/median.h"
+#include "processing/util/grey_image.h"
+#include "processing/util/statistics.h"
 #include "rig/spherical.h"
 
 namespace plenopath {
@@ -52,22 +53,7 @@ Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
 }
 
 cv::Mat KltTracker::prepare(const cv::Mat& frame) {
-  if (frame.empty()) throw Error("KLT: empty frame");
-  cv::Mat gray;
-  if (frame.channels() == 3) {
-    cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);
-  } else if (frame.channels() == 1) {
-    gray = frame;
-  } else {
-    throw Error("KLT: expected a 1- or 3-channel frame");
-  }
-  if (gray.depth() != CV_8U) gray.convertTo(gray, CV_8U);
-  const int target = options_.work_width > 0 ? std::min(options_.work_width, gray.cols) : gray.cols;
-  if (target != gray.cols) {
-    cv::Mat small;
-    cv::resize(gray, small, cv::Size(target, target / 2), 0, 0, cv::INTER_AREA);
-    gray = small;
-  }
+  const cv::Mat gray = equirect_at_width(grey_image_8u(frame, "KLT"), options_.work_width);
   if (width_ == 0) {
     width_ = gray.cols;
     height_ = gray.rows;

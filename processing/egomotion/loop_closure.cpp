@@ -6,7 +6,7 @@
 #include <opencv2/features2d.hpp>
 #include <sstream>
 
-#include "processing/egomotion/median.h"
+#include "processing/util/statistics.h"
 
 namespace plenopath {
 namespace {

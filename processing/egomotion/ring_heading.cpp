@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "processing/util/grey_image.h"
 #include "rig/spherical.h"
 
 namespace plenopath {
@@ -143,17 +144,8 @@ std::string RingOptions::check() const {
 }
 
 std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options) {
-  if (equirect.empty()) throw Error("ring image: empty frame");
-  cv::Mat gray;
-  if (equirect.channels() == 3) {
-    cv::cvtColor(equirect, gray, cv::COLOR_BGR2GRAY);
-  } else if (equirect.channels() == 1) {
-    gray = equirect;
-  } else {
-    throw Error("ring image: expected a 1- or 3-channel frame");
-  }
   cv::Mat gray32;
-  gray.convertTo(gray32, CV_32F);
+  grey_image(equirect, "ring image").convertTo(gray32, CV_32F);
   const int w = gray32.cols, h = gray32.rows;
   std::vector<double> ring(w, 0.0);
   double total = 0.0;

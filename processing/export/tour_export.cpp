@@ -16,7 +16,7 @@
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
 #include "processing/export/zip_writer.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "processing/hotspots/hotspot_validation.h"
 
 namespace plenopath {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <map>
 
-#include "processing/segment_grid.h"
+#include "processing/plan/segment_grid.h"
 
 namespace plenopath {
 namespace {

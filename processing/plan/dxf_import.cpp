@@ -18,6 +18,7 @@
 #include "processing/plan/dxf_text.h"
 #include "processing/plan/occluder_proposal.h"
 #include "processing/plan/units_inference.h"
+#include "processing/util/statistics.h"
 
 namespace plenopath {
 
@@ -502,12 +503,6 @@ struct Box {
     return gap.norm();
   }
 };
-
-double percentile(std::vector<double> v, double q) {
-  const std::size_t k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * (v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
 
 // Entities whose box lies more than ten bulk-sizes away from the bulk of the drawing (the box of the
 // middle 80 % of entity centres), when they are a small minority.

@@ -41,7 +41,7 @@ struct DxfImportOptions {
   // Largest distance (metres) between an arc/ellipse/spline and the chords that replace it.
   double chord_tolerance_m = 0.005;
   // Thickness (metres) given to single-line walls when visibility needs a closed obstacle (see
-  // processing/visibility.h); kept here so one options struct describes how a plan was read.
+  // processing/visibility/visibility.h); kept here so one options struct describes how a plan was read.
   double single_line_wall_thickness_m = 0.01;
   // Re-centre the plan when the drawing's bulk lies further than this (metres) from the DXF origin.
   double recentre_beyond_m = 10000.0;

@@ -10,7 +10,7 @@
 #include "model/layer_names.h"
 #include "processing/plan/grid_key.h"
 #include "processing/plan/parallel_pairs.h"
-#include "processing/segment_grid.h"
+#include "processing/plan/segment_grid.h"
 
 namespace plenopath {
 namespace {

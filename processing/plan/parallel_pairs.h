@@ -4,7 +4,7 @@
 // near-linear in the number of segments. Units are whatever the segments are in.
 #include <vector>
 
-#include "processing/segment_grid.h"
+#include "processing/plan/segment_grid.h"
 
 namespace plenopath {
 

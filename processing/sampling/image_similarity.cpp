@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model/error.h"
+#include "processing/util/grey_image.h"
 
 namespace plenopath {
 
@@ -52,15 +53,8 @@ double psnr_db(const cv::Mat& a, const cv::Mat& b) {
 double ssim(const cv::Mat& a, const cv::Mat& b) {
   check_pair(a, b, "ssim");
   auto grey = [](const cv::Mat& m) {
-    cv::Mat g;
-    if (m.channels() == 3)
-      cv::cvtColor(m, g, cv::COLOR_BGR2GRAY);
-    else if (m.channels() == 4)
-      cv::cvtColor(m, g, cv::COLOR_BGRA2GRAY);
-    else
-      g = m;
     cv::Mat f;
-    g.convertTo(f, CV_64F);
+    grey_image(m, "ssim").convertTo(f, CV_64F);
     return f;
   };
   const cv::Mat x = grey(a), y = grey(b);

@@ -9,7 +9,7 @@
 
 #include "model/error.h"
 #include "processing/sampling/progressive_order.h"
-#include "processing/uniform_sampling.h"
+#include "processing/sampling/uniform_sampling.h"
 
 namespace plenopath {
 

@@ -11,43 +11,9 @@
 #include "model/error.h"
 #include "processing/sampling/image_similarity.h"
 #include "processing/sampling/polygon_iou.h"
+#include "processing/util/parallel_for.h"
 
 namespace plenopath {
-
-namespace {
-
-// Runs body(i) for i in [0, n) on `threads` std::threads (0 = hardware concurrency, 1 = the calling thread)
-// joined before returning; the first exception is rethrown. Own threads, not OpenCV's pool: CGAL keeps
-// thread-local state, which must die with threads that end before the program does.
-void parallel_for_each(int n, int threads, const std::function<void(int)>& body) {
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min(threads, n);
-  if (threads <= 1) {
-    for (int i = 0; i < n; ++i) body(i);
-    return;
-  }
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::atomic<int> next{0};
-  std::atomic<bool> failed{false};
-  auto work = [&] {
-    for (int i = next++; i < n && !failed; i = next++) {
-      try {
-        body(i);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-}
-
-}  // namespace
 
 PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraPath& path, int threads,
                                      const std::function<void(double)>& progress) {

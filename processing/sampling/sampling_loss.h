@@ -11,7 +11,7 @@
 
 #include "model/camera_path.h"
 #include "model/keyframes.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 
 namespace plenopath {
 

@@ -1,9 +1,9 @@
 #include "processing/sampling/sampling_session.h"
 
 #include "model/error.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "processing/sampling/envelope_raster.h"
-#include "processing/uniform_sampling.h"
+#include "processing/sampling/uniform_sampling.h"
 
 namespace plenopath {
 

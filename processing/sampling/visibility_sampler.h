@@ -20,7 +20,7 @@
 #include "processing/sampling/cell_rule.h"
 #include "processing/sampling/envelope_raster.h"
 #include "processing/sampling/sampling_loss.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 
 namespace plenopath {
 

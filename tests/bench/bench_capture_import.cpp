@@ -13,8 +13,8 @@
 #include <opencv2/videoio.hpp>
 #include <random>
 
-#include "processing/frame_cache.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_cache.h"
+#include "processing/capture/frame_source.h"
 
 namespace fs = std::filesystem;
 using clock_type = std::chrono::steady_clock;

@@ -12,8 +12,8 @@
 #include <random>
 #include <string>
 
-#include "processing/frame_cache.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_cache.h"
+#include "processing/capture/frame_source.h"
 
 namespace {
 

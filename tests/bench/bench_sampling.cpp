@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "processing/depth_volume.h"
+#include "processing/sampling/depth_volume.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"
 #include "rig/synthetic_camera.h"
-#include "tests/processing/plan_oracle.h"
+#include "tests/processing/plan/plan_oracle.h"
 
 using namespace plenopath;
 using Clock = std::chrono::steady_clock;

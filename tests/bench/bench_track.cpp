@@ -26,7 +26,7 @@
 
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/path_evaluation.h"
-#include "processing/frame_source.h"
+#include "processing/capture/frame_source.h"
 #include "rig/synthetic_camera.h"
 
 using namespace plenopath;

@@ -13,8 +13,8 @@
 #include <iostream>
 #include <random>
 
-#include "processing/visibility.h"
-#include "tests/processing/plan_oracle.h"
+#include "processing/visibility/visibility.h"
+#include "tests/processing/plan/plan_oracle.h"
 
 using namespace plenopath;
 using Clock = std::chrono::steady_clock;

@@ -19,7 +19,7 @@
 #include "app/studio/studio_tasks.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/path_evaluation.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "rig/synthetic_camera.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"

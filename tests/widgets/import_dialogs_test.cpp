@@ -30,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/capture_import_dialog.h"

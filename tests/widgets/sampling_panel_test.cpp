@@ -13,8 +13,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/studio/studio_tasks.h"
-#include "processing/uniform_sampling.h"
-#include "processing/visibility.h"
+#include "processing/sampling/uniform_sampling.h"
+#include "processing/visibility/visibility.h"
 #include "rig/synthetic_camera.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/wait_until.h"

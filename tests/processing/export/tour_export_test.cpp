@@ -17,8 +17,8 @@
 #include "model/json_reader.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/zip_writer.h"
-#include "processing/frame_source.h"
-#include "processing/video_encode.h"
+#include "processing/capture/frame_source.h"
+#include "processing/capture/video_encode.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {

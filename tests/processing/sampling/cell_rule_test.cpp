@@ -5,7 +5,7 @@
 
 #include "model/error.h"
 #include "processing/sampling/keyframe_sampler.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "sampling_test_util.h"
 
 namespace plenopath {

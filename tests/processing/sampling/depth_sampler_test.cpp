@@ -8,7 +8,7 @@
 
 #include "model/error.h"
 #include "processing/sampling/polygon_iou.h"
-#include "processing/visibility.h"
+#include "processing/visibility/visibility.h"
 #include "rig/synthetic_camera.h"
 #include "sampling_test_util.h"
 

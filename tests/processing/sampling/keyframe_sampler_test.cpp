@@ -9,7 +9,7 @@
 
 #include "model/error.h"
 #include "processing/sampling/sampling_loss.h"
-#include "processing/uniform_sampling.h"
+#include "processing/sampling/uniform_sampling.h"
 #include "sampling_test_util.h"
 
 namespace plenopath {

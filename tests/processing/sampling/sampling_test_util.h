@@ -4,7 +4,7 @@
 
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
-#include "tests/processing/plan_oracle.h"
+#include "tests/processing/plan/plan_oracle.h"
 
 namespace plenopath::sampling_test {
 
