@@ -98,6 +98,16 @@ cv::Mat plaster(cv::RNG& rng, int n, cv::Vec3b base) {
   return img;
 }
 
+// Emulsion paint on smooth plaster: a near-uniform colour with faint mottling (about 1.5 grey levels at a
+// few centimetres to a metre) and a fainter fine grain; nothing a corner detector would call a corner.
+cv::Mat paint(cv::RNG& rng, int n) {
+  const cv::Vec3b base(200, 208, 214);
+  cv::Mat img(n, n, CV_8UC3, cv::Scalar(base[0], base[1], base[2]));
+  add_noise(img, rng, {{4, 1.5f}, {16, 1.0f}, {64, 0.7f}, {n / 2, 0.8f}}, {1.f, 1.f, 1.f});
+  wrap_blur(img);
+  return img;
+}
+
 cv::Mat concrete(cv::RNG& rng, int n) {
   const cv::Vec3b base(150, 155, 160);
   cv::Mat img(n, n, CV_8UC3, cv::Scalar(base[0], base[1], base[2]));
@@ -270,6 +280,10 @@ std::shared_ptr<const SceneTextures> build(std::uint32_t seed, int n, double tpm
   {
     cv::RNG rng = rng_for(kMaterialCloth);
     t->materials[kMaterialCloth] = pyramid(cloth(rng, std::min(n, 256)), true);
+  }
+  {
+    cv::RNG rng = rng_for(kMaterialPaint);
+    t->materials[kMaterialPaint] = pyramid(paint(rng, n), true);
   }
   for (int i = 0; i < 8; ++i) {
     cv::RNG rng = rng_for(100 + i);

@@ -17,7 +17,8 @@ enum TextureMaterial : int {
   kMaterialFloor = 7,
   kMaterialCeiling = 8,
   kMaterialCloth = 9,
-  kMaterialCount = 10,
+  kMaterialPaint = 10,  // plain painted plaster: near-uniform, faint noise (SceneOptions::wall_finish)
+  kMaterialCount = 11,
 };
 
 struct TexturePyramid {

@@ -14,7 +14,15 @@
 // The panorama follows rig/spherical.h: centre column = heading, azimuth grows clockwise seen from above.
 // Speed: one 2-D ray cast per panorama column (through a uniform grid over the faces) collects the faces the
 // column can see, then every pixel of the column walks that short list with its own elevation; both passes
-// run on OpenCV's thread pool. tests/bench/bench_render.cpp measures it.
+// run on OpenCV's thread pool. A tilted camera (RenderOptions' pitch and roll) intersects each pixel's own
+// ray with the faces its two neighbouring columns collected. tests/bench/bench_render.cpp measures it.
+//
+// What a real trolley capture has besides the scene (RenderOptions, all off by default): sensor noise,
+// exposure drift and sudden auto-exposure steps, people walking, pitch and roll wobble from an uneven floor,
+// the trolley (mast, frame, handle) and its operator in every frame; plain painted walls (SceneOptions).
+// Where the code lives: synthetic_scene.cpp (building), ray_casting.cpp, surface_shading.cpp (texturing),
+// scene_people.cpp, capture_nuisances.cpp (tilt, exposure, noise), trolley_rig.cpp (operator and trolley),
+// panorama_render.cpp (the render loops), auto_walk.cpp, office_sample.cpp.
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
@@ -27,6 +35,12 @@
 #include "model/floor_plan.h"
 
 namespace plenopath {
+
+// How walls and pillars look.
+enum class WallFinish : std::uint8_t {
+  kTextured = 0,  // plaster and concrete with marks at every scale (corners everywhere)
+  kPlainPaint,    // one near-uniform paint with faint noise (a painted corridor: few corners)
+};
 
 struct SceneOptions {
   double wall_height = 2.8;    // metres; also the ceiling height
@@ -46,6 +60,8 @@ struct SceneOptions {
   int texture_size = 1024;         // texels per side of each procedural texture (power of two)
   double texels_per_metre = 256.0;
   bool use_grid = true;  // cast rays through a uniform grid over the faces (off = test every face)
+  WallFinish wall_finish = WallFinish::kTextured;
+  bool posters = true;  // framed posters on some of the longer walls
 
   // Empty when the options make sense; otherwise says what is wrong.
   std::string check() const;
@@ -60,7 +76,9 @@ enum class SurfaceKind : std::uint8_t {
   kFurnitureTop,
   kFloor,
   kCeiling,
-  kPerson
+  kPerson,
+  kOperator,  // the person pushing the trolley (RenderOptions::operator_person)
+  kTrolley    // the trolley's mast, frame and handle (RenderOptions::trolley)
 };
 
 // One vertical face of the scene: a plan segment extruded from z = 0 to `top`.
@@ -124,18 +142,56 @@ struct RenderOptions {
   std::uint32_t people_seed = 11;
   double frame_rate = 30.0;  // frames per second: a frame's time is index / frame_rate (people move)
   int jpeg_quality = 92;     // used by writers of the frames (rig/ itself encodes nothing)
+  // Auto-exposure steps: the gain jumps to a new level (exp(u * exposure_jump), u uniform in [-1, 1]) at
+  // jittered frames, on average every exposure_jump_frames frames, on top of the slow drift. 0 = none.
+  double exposure_jump = 0.0;
+  double exposure_jump_frames = 60.0;
+  std::uint32_t exposure_seed = 13;
+  // Pitch and roll of the camera (an uneven floor rocks the trolley), a deterministic function of the frame
+  // index: a smooth random walk (standard deviation tilt_wobble_deg per axis, changing over about
+  // tilt_wobble_frames frames), plus bumps (a jolt of up to bump_deg that rings down over a few frames, on
+  // average bumps_per_100_frames of them), plus a constant pitch_deg / roll_deg. The heading (the
+  // horizontal direction of the centre column) and the position are the pose's: tilt never changes them.
+  double tilt_wobble_deg = 0.0;
+  double tilt_wobble_frames = 20.0;
+  double bump_deg = 0.0;
+  double bumps_per_100_frames = 3.0;
+  double pitch_deg = 0.0;  // > 0: the forward direction (centre column) points up
+  double roll_deg = 0.0;   // > 0: the camera's left (azimuth -90) side up, its right side down
+  std::uint32_t tilt_seed = 5;
+  // The trolley in every frame: a mast under the lens, a base frame near the floor with a box on it, and
+  // a push handle behind the camera, all rigid with the camera (they tilt with it).
+  bool trolley = false;
+  // The operator in every frame: a person standing operator_distance_m behind the lens, hands on the
+  // handle, upright (level) and turning with the camera's heading.
+  bool operator_person = false;
+  double operator_distance_m = 0.7;
 
   std::string check() const;
 };
+
+// The camera's tilt at a frame (RenderOptions' wobble, bumps and constant pitch/roll), radians.
+struct CameraTilt {
+  double pitch = 0.0;  // rotation about the camera's left axis (+y): > 0 raises the forward direction
+  double roll = 0.0;   // rotation about the forward axis (+x): > 0 raises the left side
+  bool any() const { return pitch != 0.0 || roll != 0.0; }
+};
+CameraTilt camera_tilt_at_frame(const RenderOptions& options, int frame_index);
+// world_from_camera = Rz(heading) * Ry(-pitch) * Rx(roll): camera-frame bearings (rig/spherical.h) to the
+// plan frame. With no tilt it is world_from_camera_rotation(heading).
+Eigen::Matrix3d world_from_tilted_camera(double heading, const CameraTilt& tilt);
+// The exposure gain at a frame (drift times steps); 1 when both are off.
+double exposure_gain_at_frame(const RenderOptions& options, int frame_index);
 
 struct RenderedPanorama {
   cv::Mat rgb;    // CV_8UC3, BGR
   cv::Mat depth;  // CV_32F, metres along the ray, 0 = no hit (empty when RenderOptions::depth is false)
 };
 
-// Renders the panorama seen from (pose.x, pose.y, camera_height) with heading pose.heading. The result is a
-// deterministic function of the scene, the pose (including pose.index, which times people, noise and drift)
-// and the options; thread count does not change it.
+// Renders the panorama seen from (pose.x, pose.y, camera_height) with heading pose.heading, tilted by
+// camera_tilt_at_frame(options, pose.index). The result is a deterministic function of the scene, the pose
+// (including pose.index, which times people, noise, exposure and tilt) and the options; thread count does
+// not change it. Depth includes the trolley and the operator when they are on.
 RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose,
                                  const RenderOptions& options);
 // Same, reusing `out`'s buffers when their size fits (saves page faults when rendering many frames).
@@ -148,13 +204,15 @@ struct RayHit {
   SurfaceKind kind = SurfaceKind::kNone;
   cv::Vec3b bgr{0, 0, 0};
 };
-// Casts one ray; `frame_index` places the people (as for a pose with that index).
+// Casts one ray; `frame_index` places the people (as for a pose with that index). The scene only: no
+// trolley or operator (they need a camera pose), no exposure gain.
 RayHit trace_ray(const SyntheticScene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                  const RenderOptions& options, int frame_index = 0);
 
 // Renders an image whose pixel (u, v) looks from `origin` along directions(v, u) (CV_64FC3, plan frame, need
 // not be unit): pinhole heads, cube faces. `pixel_angle` (radians) is the angular size of a pixel, for
-// texture filtering. Depth is the distance along the ray (0 = no hit).
+// texture filtering. Depth is the distance along the ray (0 = no hit). The scene only (as trace_ray), with
+// the exposure gain and noise of `frame_index`; the directions carry any tilt.
 RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vector3d& origin,
                                    const cv::Mat& directions, double pixel_angle,
                                    const RenderOptions& options, int frame_index = 0);

@@ -1,5 +1,7 @@
 // `plenopath render --plan PLAN.dxf [--layers L1,L2] [--path PATH.json | --auto-path] [--step 0.08]
-// [--frames N] [--size 2048x1024] [--depth] [--noise S] [--people N] [--rig RIG.json] --out DIR`:
+// [--frames N] [--size 2048x1024] [--depth] [--noise S] [--people N] [--exposure-drift A] [--exposure-jump J]
+// [--tilt-wobble DEG] [--bumps DEG] [--trolley] [--operator] [--plain-walls] [--jpeg-quality Q]
+// [--rig RIG.json] --out DIR`:
 // renders the synthetic surround camera along a path. Writes DIR/groundtruth.json (the path file, with
 // `file` fields) first, then renders from that file as read back, so rendering again with
 // `--path DIR/groundtruth.json` reproduces every frame bit for bit. Frames go to DIR/frames/NNNNNN.jpg,
@@ -24,8 +26,10 @@ namespace fs = std::filesystem;
 
 struct Options {
   std::string plan, layers, path, rig, out, size = "2048x1024";
-  bool auto_path = false, depth = false, quiet = false;
+  bool auto_path = false, depth = false, quiet = false, trolley = false, operator_person = false,
+       plain_walls = false;
   double step = 0.08, noise = 0.0, exposure_drift = 0.0, wall_height = 2.8, camera_height = 1.6;
+  double exposure_jump = 0.0, tilt_wobble = 0.0, bumps = 0.0;
   int frames = 0, people = 0, jpeg_quality = 92;
   unsigned seed = 1;
 };
@@ -42,6 +46,10 @@ int run(const Options& o) {
   scene_options.wall_height = o.wall_height;
   scene_options.camera_height = o.camera_height;
   scene_options.texture_seed = o.seed;
+  if (o.plain_walls) {
+    scene_options.wall_finish = WallFinish::kPlainPaint;
+    scene_options.posters = false;
+  }
   RenderOptions render_options;
   parse_size(o.size, &render_options.width, &render_options.height, "--size");
   render_options.depth = o.depth;
@@ -49,6 +57,11 @@ int run(const Options& o) {
   render_options.people = o.people;
   render_options.exposure_drift = o.exposure_drift;
   render_options.jpeg_quality = o.jpeg_quality;
+  render_options.exposure_jump = o.exposure_jump;
+  render_options.tilt_wobble_deg = o.tilt_wobble;
+  render_options.bump_deg = o.bumps;
+  render_options.trolley = o.trolley;
+  render_options.operator_person = o.operator_person;
   if (const std::string e = render_options.check(); !e.empty()) throw Error(e);
   if (o.frames < 0) throw Error("--frames must be >= 0");
 
@@ -127,6 +140,16 @@ Command add_render_command(CLI::App& parent) {
   sub->add_option("--people", o->people, "Moving people")->capture_default_str();
   sub->add_option("--exposure-drift", o->exposure_drift, "Relative exposure drift amplitude")
       ->capture_default_str();
+  sub->add_option("--exposure-jump", o->exposure_jump,
+                  "Auto-exposure steps: gain jumps by up to exp(+-J) about every 60 frames")
+      ->capture_default_str();
+  sub->add_option("--tilt-wobble", o->tilt_wobble, "Pitch/roll wobble from an uneven floor, degrees (RMS)")
+      ->capture_default_str();
+  sub->add_option("--bumps", o->bumps, "Floor bumps: jolts of up to this many degrees")
+      ->capture_default_str();
+  sub->add_flag("--trolley", o->trolley, "The trolley (mast, frame, handle) in every frame");
+  sub->add_flag("--operator", o->operator_person, "The operator behind the trolley in every frame");
+  sub->add_flag("--plain-walls", o->plain_walls, "Plain painted walls and pillars, no posters");
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
   sub->add_option("--seed", o->seed, "Texture seed")->capture_default_str();
   sub->add_option("--wall-height", o->wall_height, "Wall height, metres")->capture_default_str();

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -12,6 +15,8 @@
 #include "rig/synthetic_camera.h"
 
 namespace plenopath::cli {
+
+namespace fs = std::filesystem;
 
 FloorPlan load_render_plan(const std::string& plan) {
   if (plan == "office-sample") return make_office_sample_plan();
@@ -39,8 +44,9 @@ std::vector<std::string> split_list(const std::string& text) {
 
 void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality) {
   std::vector<int> params;
-  const std::string lower = file.size() >= 4 ? file.substr(file.size() - 4) : file;
-  if (lower == ".jpg" || lower == "jpeg") params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
+  std::string lower = fs::path(file).extension().string();
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower == ".jpg" || lower == ".jpeg") params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
   bool ok = false;
   try {
     ok = cv::imwrite(file, image, params);

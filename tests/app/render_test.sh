@@ -40,6 +40,20 @@ w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
 assert (w, h, depth, colour) == (128, 64, 16, 0), (w, h, depth, colour)
 PY
 
+# The capture nuisances, and the JPEG quality honoured: the same frames at quality 30 are much smaller than
+# at 95 (and differ), frame by frame.
+nuis=(--plan office-sample --path "$tmp/a/groundtruth.json" --frames 3 --size 256x128 --trolley --operator
+      --tilt-wobble 1.0 --bumps 1.5 --exposure-jump 0.3 --plain-walls --quiet)
+"$cli" render "${nuis[@]}" --jpeg-quality 95 --out "$tmp/q95" || fail "nuisance render exit $?"
+"$cli" render "${nuis[@]}" --jpeg-quality 30 --out "$tmp/q30" || fail "nuisance render (q30) exit $?"
+for f in "$tmp"/q95/frames/*; do
+  hi=$(stat -c %s "$f"); lo=$(stat -c %s "$tmp/q30/frames/$(basename "$f")")
+  (( lo * 3 < hi * 2 )) || fail "jpeg quality not honoured: $(basename "$f") q30 $lo bytes vs q95 $hi bytes"
+done
+"$cli" render --plan office-sample --tilt-wobble -1 --out "$tmp/f" --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "bad tilt: exit $code"
+grep -q "tilt_wobble_deg" "$tmp/err.txt" || fail "bad tilt message: $(cat "$tmp/err.txt")"
+
 # Auto path with a step, and the built-in sample plan.
 "$cli" render --plan office-sample --auto-path --step 0.2 --frames 3 --size 64x32 --out "$tmp/c" --quiet || fail "auto path exit $?"
 [[ $(ls "$tmp/c/frames" | wc -l) -eq 3 ]] || fail "auto path frames"
