@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""Benchmark: `plenopath track` on the POV-Ray corpus (corpus.py), scored against the renders' ground truth.
+
+Installed by CMake as <build>/tests/bench/bench_povray_track (a wrapper passing --plenopath and --results);
+`make bench` runs it with the other bench_* executables and expects one JSON object on stdout.
+
+For each scene: renders whatever is missing from the cache (corpus.ensure; says so on stderr, with the time it
+may take), runs `plenopath track --capture FRAMES --camera-height H --json`, then `plenopath eval-path` on the
+whole path and, when the estimate carries a per-frame "piece" field, on each piece on its own (both files
+split by the estimate's piece). Figures are reported as measured, against the targets of issue #18.
+
+Options: --scenes a,b,c (default all), --plenopath PATH, --results DIR (estimates and split files),
+--no-render (skip scenes that are not fully cached instead of rendering them; the default when
+PLENOPATH_BENCH_QUICK=1).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import corpus  # noqa: E402
+
+TARGETS = {"heading_rms_deg": 0.05, "ate_pct": 0.05, "scale_error_pct": 0.5}
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+
+
+def git_commit():
+    p = run(["git", "-C", HERE, "rev-parse", "--short", "HEAD"])
+    return p.stdout.strip() if p.returncode == 0 else "unknown"
+
+
+def loadavg():
+    try:
+        return open("/proc/loadavg").read().split()[:3]
+    except OSError:
+        return None
+
+
+def eval_path(plenopath, estimate, truth):
+    p = run([plenopath, "eval-path", "--estimate", estimate, "--truth", truth, "--json"])
+    if p.returncode != 0:
+        return {"error": (p.stderr or p.stdout).strip()[-2000:]}
+    e = json.loads(p.stdout)
+    return {"frames_matched": e["frames_matched"], "heading_rms_deg": e["rot_rms_deg"],
+            "heading_max_deg": e["rot_max_deg"], "ate_rms_m": e["ate_rms_m"], "ate_pct": e["ate_pct"],
+            "length_m": e["truth_length_m"], "scale_error_pct": e["scale_error_pct"]}
+
+
+def meets(fig):
+    if "error" in fig:
+        return False
+    return all(fig.get(k) is not None and fig[k] <= v for k, v in TARGETS.items())
+
+
+def write_json(path, obj):
+    with open(path + ".tmp", "w") as fh:
+        json.dump(obj, fh, indent=1)
+    os.replace(path + ".tmp", path)
+
+
+def bench_scene(scene, args):
+    spec = corpus.SCENES[scene]
+    out = {"scene": scene, "description": spec["description"]}
+    if args.no_render and not corpus.is_complete(scene):
+        out["skipped"] = "not rendered (run tests/bench/povray/corpus.py render %s)" % scene
+        return out
+    d = corpus.ensure(scene)
+    truth_file = os.path.join(d, "truth.json")
+    truth = json.load(open(truth_file))
+    done = json.load(open(os.path.join(d, "complete.json")))
+    res = os.path.join(args.results, scene)
+    os.makedirs(res, exist_ok=True)
+    estimate = os.path.join(res, "path.json")
+    out.update({"frames": len(truth["frames"]), "length_m": truth["length_m"],
+                "render_seconds": done.get("render_seconds_total"), "cache": d,
+                "true_pieces": [[p["first"], p["last"]] for p in truth["pieces"]]})
+    cmd = [args.plenopath, "track", "--capture", os.path.join(d, "frames"), "--camera-height",
+           str(truth["camera_height_m"]), "--out", estimate, "--json", "--quiet"]
+    corpus.log("%s: tracking %d frames" % (scene, len(truth["frames"])))
+    t0 = time.time()
+    p = run(cmd)
+    out["seconds"] = round(time.time() - t0, 1)
+    if p.returncode != 0 or not os.path.exists(estimate):
+        out["error"] = "track exit %d: %s" % (p.returncode, (p.stderr or p.stdout).strip()[-2000:])
+        out["pass"] = False
+        return out
+    try:
+        summary = json.loads(p.stdout)
+        if isinstance(summary, dict):
+            out["track_summary"] = {k: v for k, v in summary.items() if not isinstance(v, (list, dict))}
+            if isinstance(summary.get("pieces"), list):
+                out["track_pieces"] = summary["pieces"]
+    except ValueError:
+        pass
+    est = json.load(open(estimate))
+    out["frames_tracked"] = len(est["frames"])
+    out["whole"] = eval_path(args.plenopath, estimate, truth_file)
+    by_piece = {}
+    for f in est["frames"]:
+        by_piece.setdefault(int(f.get("piece", 0)), []).append(f)
+    truth_by_index = {f["index"]: f for f in truth["frames"]}
+    out["pieces_found"] = len(by_piece)
+    out["pieces_true"] = len(truth["pieces"])
+    pieces = []
+    for k in sorted(by_piece):
+        frames = by_piece[k]
+        idx = [f["index"] for f in frames]
+        entry = {"piece": k, "first": min(idx), "last": max(idx), "frames": len(frames)}
+        if len(by_piece) == 1:
+            entry.update(out["whole"])
+        elif len(frames) < 3:
+            entry["error"] = "fewer than 3 frames"
+        else:
+            ef = os.path.join(res, "piece%d_estimate.json" % k)
+            tf = os.path.join(res, "piece%d_truth.json" % k)
+            write_json(ef, dict(est, frames=frames))
+            write_json(tf, {"units": truth["units"],
+                            "frames": [truth_by_index[i] for i in idx if i in truth_by_index]})
+            entry.update(eval_path(args.plenopath, ef, tf))
+        entry["pass"] = meets(entry)
+        pieces.append(entry)
+    out["pieces"] = pieces
+    out["pass"] = out["pieces_found"] == out["pieces_true"] and all(e["pass"] for e in pieces)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", default=",".join(corpus.SCENES))
+    ap.add_argument("--plenopath", default=os.path.join(HERE, "..", "..", "..", "build", "app", "plenopath"))
+    ap.add_argument("--results", default=os.path.join(corpus.cache_root(), "results"))
+    ap.add_argument("--no-render", action="store_true")
+    args = ap.parse_args()
+    if os.environ.get("PLENOPATH_BENCH_QUICK") == "1":
+        args.no_render = True
+    report = {"benchmark": "povray_track", "commit": git_commit(), "load_before": loadavg(),
+              "targets": TARGETS, "cache": corpus.cache_root(), "scenes": []}
+    t0 = time.time()
+    for scene in [s for s in args.scenes.split(",") if s]:
+        if scene not in corpus.SCENES:
+            report["scenes"].append({"scene": scene, "error": "unknown scene"})
+            continue
+        try:
+            report["scenes"].append(bench_scene(scene, args))
+        except Exception as e:  # a broken scene must not hide the others' figures
+            report["scenes"].append({"scene": scene, "error": "%s: %s" % (type(e).__name__, e), "pass": False})
+    report["load_after"] = loadavg()
+    report["seconds"] = round(time.time() - t0, 1)
+    report["pass"] = all(s.get("pass", False) for s in report["scenes"] if "skipped" not in s)
+    print(json.dumps(report, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
