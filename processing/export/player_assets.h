@@ -1,12 +1,14 @@
 #pragma once
-// The web player's files (resources/player/), compiled into the binary by cmake/EmbedFiles.cmake.
+// The web player's files, compiled into the binary by cmake/EmbedFiles.cmake: index.html and player.css from
+// resources/player/, player.js joined from resources/player/src/ and tour.schema.json filled from
+// resources/schema/ (processing/CMakeLists.txt).
 #include <cstddef>
 #include <vector>
 
 namespace plenopath {
 
 struct EmbeddedFile {
-  const char* name;  // file name inside resources/player/
+  const char* name;  // file name in the exported package
   const unsigned char* data;
   std::size_t size;
 };

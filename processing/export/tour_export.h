@@ -1,6 +1,6 @@
 #pragma once
 // Exports a project as a packaged walkthrough: a folder (or .zip) holding tour.json (schema:
-// resources/player/tour.schema.json), keyframe images at two resolutions, hotspot media, the plan as SVG
+// resources/schema/tour.schema.json), keyframe images at two resolutions, hotspot media, the plan as SVG
 // and the web player, which works offline from file:// or from any static server.
 #include <cstdint>
 #include <functional>
