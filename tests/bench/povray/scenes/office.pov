@@ -40,7 +40,10 @@ Wall(12, 7, 12, 12, 0.15)
 #declare WallTexture = texture {  // service wall between S1 and S2: brick
   pigment { brick rgb 0.75, rgb <0.55, 0.25, 0.18> brick_size <0.25, 0.075, 0.125> mortar 0.01 }
   finish { diffuse 0.8 } }
-Wall(8, 0.45, 8, 4.6, 0.9)
+// A camera inside this wall (the gap walk) sees a uniform black: nothing to connect the two rooms by.
+#declare WallInterior = texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } }
+Wall(8, 0.58, 8, 4.47, 0.9)  // y 0.13..4.92: 5 mm short of the walls it meets, so none shows inside it
+#undef WallInterior
 #declare WallTexture = texture { pigment { rgb <0.7, 0.8, 0.75> } finish { diffuse 0.8 } }  // S3 paint
 Wall(14, 0, 14, 5, 0.15)
 
@@ -53,9 +56,10 @@ DoorLeaf(9.5, 7.075, 1.0, 105)   // N2
 DoorLeaf(15.0, 7.075, 1.0, 60)   // N3
 
 // ---- floors and ceiling ----
-plane { y, 0 texture { pigment { granite color_map { [0 rgb <0.35, 0.36, 0.42>] [1 rgb <0.25, 0.26, 0.3>] } scale 0.3 } } }
+// floor and ceiling are cut out where the service wall stands, so that from inside it only black is seen
+plane { y, 0 texture { pigment { granite color_map { [0 rgb <0.35, 0.36, 0.42>] [1 rgb <0.25, 0.26, 0.3>] } scale 0.3 } } clipped_by { box { P(7.549, 0.129, -1), P(8.451, 4.921, 4) inverse } } }
 box { P(0, 5, -0.01), P(20, 7, 0.001) texture { pigment { checker rgb <0.7, 0.68, 0.6>, rgb <0.6, 0.58, 0.52> scale 0.5 } finish { specular 0.2 } } }
-plane { y, WallH texture { pigment { brick rgb 0.6, rgb 0.93 brick_size <0.6, 0.6, 0.6> mortar 0.015 } finish { diffuse 0.8 } } }
+plane { y, WallH texture { pigment { brick rgb 0.6, rgb 0.93 brick_size <0.6, 0.6, 0.6> mortar 0.015 } finish { diffuse 0.8 } } clipped_by { box { P(7.549, 0.129, -1), P(8.451, 4.921, 4) inverse } } }
 
 // ---- corridor furniture ----
 Picture(5.0, 6.925, -90, 0.8, 0.6, 1.5, pigment { agate scale 0.4 })
@@ -105,7 +109,7 @@ Chair(1.3, 3.7, 180, rgb <0.6, 0.4, 0.1>)
 Desk(5.5, 0.7, 180, rgb <0.9, 0.9, 0.85>)
 Chair(5.3, 1.3, 10, rgb <0.1, 0.3, 0.6>)
 Shelf(0.3, 1.6, 90, 7)
-Shelf(7.4, 3.0, -90, 8)
+Shelf(7.3, 4.2, -90, 8)
 Plant(7.2, 0.5, 15)
 Picture(3.5, 0.125, 90, 1.6, 1.0, 1.6, pigment { bozo turbulence 0.5 color_map { [0 rgb <0.1, 0.4, 0.1>] [0.5 rgb <0.8, 0.8, 0.2>] [1 rgb <0.1, 0.1, 0.5>] } scale 0.15 })
 Picture(4.5, 4.925, -90, 0.9, 0.7, 1.5, pigment { hexagon rgb <0.8, 0.2, 0.2>, rgb <0.2, 0.2, 0.8>, rgb 0.9 scale 0.08 rotate 90 * x })
