@@ -29,10 +29,24 @@ nlohmann::json path_to_json(const CameraPath& path) {
     if (f.confidence != 1.0) j["confidence"] = f.confidence;
     if (f.flags != kFrameOk) j["flags"] = f.flags;
     if (!f.reason.empty()) j["reason"] = f.reason;
+    if (f.piece != 0) j["piece"] = f.piece;
     frames.push_back(std::move(j));
   }
   nlohmann::json j = {{"units", "m"}, {"frames", std::move(frames)}};
   if (!path.scale_source.empty()) j["scale_source"] = path.scale_source;
+  if (!path.pieces.empty()) {
+    nlohmann::json pieces = nlohmann::json::array();
+    for (const PathPiece& p : path.pieces) {
+      nlohmann::json q = {{"first_index", p.first_index},
+                          {"last_index", p.last_index},
+                          {"placed", p.placed},
+                          {"scale_factor", p.scale_factor}};
+      if (!p.scale_source.empty()) q["scale_source"] = p.scale_source;
+      if (!p.break_reason.empty()) q["break_reason"] = p.break_reason;
+      pieces.push_back(std::move(q));
+    }
+    j["pieces"] = std::move(pieces);
+  }
   return j;
 }
 
@@ -60,10 +74,40 @@ CameraPath path_from_json(const JsonReader& reader) {
       frame.flags = static_cast<std::uint32_t>(v);
     }
     frame.reason = f.string_or("reason", "");
+    if (auto piece = f.find("piece")) {
+      frame.piece = piece->integer();
+      if (frame.piece < 0) piece->fail("piece must be >= 0");
+    }
     path.frames.push_back(std::move(frame));
   }
   std::sort(path.frames.begin(), path.frames.end(),
             [](const PathFrame& a, const PathFrame& b) { return a.index < b.index; });
+  if (auto pieces = reader.find("pieces")) {
+    for (std::size_t k = 0; k < pieces->size(); ++k) {
+      const JsonReader q = pieces->at(k);
+      PathPiece p;
+      p.first_index = q.integer("first_index");
+      p.last_index = q.integer("last_index");
+      if (p.last_index < p.first_index) q.at("last_index").fail("last_index must be >= first_index");
+      p.placed = q.boolean_or("placed", true);
+      p.scale_source = q.string_or("scale_source", "");
+      p.scale_factor = q.number_or("scale_factor", 1.0);
+      p.break_reason = q.string_or("break_reason", "");
+      path.pieces.push_back(std::move(p));
+    }
+  }
+  // Every frame's piece must be described, and pieces follow each other in capture order.
+  const int piece_count = static_cast<int>(path.pieces.size());
+  int previous_piece = 0;
+  for (const PathFrame& f : path.frames) {
+    if (f.piece != 0 && f.piece >= piece_count)
+      frames.fail("frame " + std::to_string(f.index) + " is in piece " + std::to_string(f.piece) +
+                  " but the path describes " + std::to_string(piece_count) + " pieces");
+    if (f.piece < previous_piece)
+      frames.fail("frame " + std::to_string(f.index) + " goes back to piece " + std::to_string(f.piece) +
+                  ": pieces must follow each other in capture order");
+    previous_piece = f.piece;
+  }
   return path;
 }
 

@@ -1,5 +1,6 @@
 // `plenopath eval-path --estimate PATH.json --truth GT.json [--json]`: frames matched by index, a 2-D
-// similarity alignment without reflection (Umeyama), then heading RMS and absolute trajectory error.
+// similarity alignment without reflection (Umeyama), then heading RMS and absolute trajectory error. An
+// estimate in pieces (CameraPath::pieces) is also scored piece by piece, each aligned on its own.
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -30,13 +31,44 @@ Command add_eval_path_command(CLI::App& parent) {
                 {"rot_max_deg", e.rot_max_deg},       {"ate_rms_m", e.ate_rms_m},
                 {"ate_max_m", e.ate_max_m},           {"ate_pct", e.ate_pct},
                 {"truth_length_m", e.truth_length_m}, {"scale_error_pct", e.scale_error_pct}};
+            auto scores = [](const PathErrors& p) {
+              return nlohmann::json{{"frames_matched", p.frames_matched},
+                                    {"rot_rms_deg", p.rot_rms_deg},
+                                    {"rot_max_deg", p.rot_max_deg},
+                                    {"ate_rms_m", p.ate_rms_m},
+                                    {"ate_pct", p.ate_pct},
+                                    {"truth_length_m", p.truth_length_m},
+                                    {"scale_error_pct", p.scale_error_pct}};
+            };
+            nlohmann::json pieces = nlohmann::json::array();
+            std::vector<PathErrors> piece_errors;
+            if (estimate.piece_count() > 1) {
+              for (int k = 0; k < estimate.piece_count(); ++k) {
+                const CameraPath piece = estimate.piece_path(k);
+                if (piece.size() < 2) continue;
+                piece_errors.push_back(evaluate_path(piece, truth));
+                nlohmann::json q = scores(piece_errors.back());
+                q["piece"] = k;
+                q["first_index"] = piece.frames.front().index;
+                q["last_index"] = piece.frames.back().index;
+                pieces.push_back(std::move(q));
+              }
+            }
             if (options->json) {
-              std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+              nlohmann::json out = j;
+              out["pieces"] = pieces;
+              std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             } else {
               std::cout << std::fixed << std::setprecision(4) << e.frames_matched
                         << " frames matched; heading RMS " << e.rot_rms_deg << " deg; ATE " << e.ate_rms_m
                         << " m RMS (" << e.ate_pct << " % of " << e.truth_length_m << " m); scale error "
                         << e.scale_error_pct << " %\n";
+              for (std::size_t k = 0; k < piece_errors.size(); ++k) {
+                const PathErrors& p = piece_errors[k];
+                std::cout << "  piece " << pieces[k]["piece"].get<int>() << ": " << p.frames_matched
+                          << " frames; heading RMS " << p.rot_rms_deg << " deg; ATE " << p.ate_pct
+                          << " %; scale error " << p.scale_error_pct << " %\n";
+              }
             }
             return kExitOk;
           }};

@@ -18,8 +18,8 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "processing/anchors/anchor_refinement.h"
-#include "processing/egomotion/egomotion.h"
 #include "processing/capture/frame_source.h"
+#include "processing/egomotion/egomotion.h"
 
 namespace plenopath::cli {
 namespace {
@@ -107,110 +107,138 @@ Command add_track_command(CLI::App& parent) {
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
   sub->add_flag("--quiet", options->quiet, "No progress on stderr");
-  return {sub, [options]() {
-            if (options->last >= 0 && options->last < options->first)
-              throw Error("--last " + std::to_string(options->last) + " is before --first " +
-                          std::to_string(options->first));
-            FrameSourceOptions source_options;
-            source_options.first_frame = options->first;
-            source_options.last_frame = options->last;
-            source_options.stride = options->stride;
-            std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
-            const int n = source->frame_count();
-            const std::vector<int> positions = capture_positions(*source);
-            // Anchors are read and checked before the long tracking run.
-            Anchors anchors;
-            if (!options->anchors.empty()) {
-              anchors = read_anchors_file(options->anchors);
-              if (anchors.empty()) throw Error(options->anchors + ": no anchors in the file");
-              for (const Anchor& a : anchors)
-                if (std::find(positions.begin(), positions.end(), a.frame) == positions.end())
-                  throw Error(options->anchors + ": anchor on frame " + std::to_string(a.frame) +
-                              ", which is not among the tracked frames (see --first, --last, --stride)");
+  return {
+      sub, [options]() {
+        if (options->last >= 0 && options->last < options->first)
+          throw Error("--last " + std::to_string(options->last) + " is before --first " +
+                      std::to_string(options->first));
+        FrameSourceOptions source_options;
+        source_options.first_frame = options->first;
+        source_options.last_frame = options->last;
+        source_options.stride = options->stride;
+        std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
+        const int n = source->frame_count();
+        const std::vector<int> positions = capture_positions(*source);
+        // Anchors are read and checked before the long tracking run.
+        Anchors anchors;
+        if (!options->anchors.empty()) {
+          anchors = read_anchors_file(options->anchors);
+          if (anchors.empty()) throw Error(options->anchors + ": no anchors in the file");
+          for (const Anchor& a : anchors)
+            if (std::find(positions.begin(), positions.end(), a.frame) == positions.end())
+              throw Error(options->anchors + ": anchor on frame " + std::to_string(a.frame) +
+                          ", which is not among the tracked frames (see --first, --last, --stride)");
+        }
+        EgomotionOptions eo;
+        eo.camera_height_m = options->camera_height;
+        eo.klt.work_width = options->work_width;
+        eo.loop.enabled = !options->no_loop_closure;
+        if (options->known_distance.size() == 3) {
+          // Capture positions to positions among the tracked frames.
+          auto tracked = [&](double frame) {
+            const auto it = std::find(positions.begin(), positions.end(), static_cast<int>(frame));
+            if (it == positions.end())
+              throw Error("--known-distance: frame " + std::to_string(static_cast<int>(frame)) +
+                          " is not among the tracked frames (see --first, --last, --stride)");
+            return static_cast<int>(it - positions.begin());
+          };
+          eo.scale_frame_a = tracked(options->known_distance[0]);
+          eo.scale_frame_b = tracked(options->known_distance[1]);
+          eo.scale_distance_m = options->known_distance[2];
+          const std::string bad = eo.check();
+          if (!bad.empty()) throw Error("--known-distance: " + bad);
+        }
+        int last_percent = -1;
+        std::string last_stage;
+        auto progress = [&](const std::string& stage, double f) {
+          const int percent = static_cast<int>(std::floor(100 * f));
+          if (!options->quiet && (percent / 10 != last_percent / 10 || stage != last_stage)) {
+            std::cerr << "track: " << stage << " " << percent << "%\n";
+            last_percent = percent;
+            last_stage = stage;
+          }
+          return true;
+        };
+        EgomotionResult r = EgomotionTracker::run(
+            n, [&](int i) { return source->read(i); }, eo, progress);
+        renumber_frames(&r.path, positions);
+        if (source->kind() == CaptureKind::kImageFolder)
+          for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
+        AnchorRefinementReport anchor_report;
+        if (!anchors.empty()) {
+          if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
+          r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report);
+          // Two anchors or more fix the scale too.
+          if (anchors.size() >= 2) r.path.scale_source = r.scale_source = "anchors";
+        }
+        double worst_residual = 0.0;
+        nlohmann::json residuals = nlohmann::json::array();
+        for (const AnchorResidual& a : anchor_report.residuals) {
+          worst_residual = std::max(worst_residual, a.distance_m);
+          residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
+        }
+        if (!options->out.empty()) write_path_file(r.path, options->out);
+        nlohmann::json pieces = nlohmann::json::array();
+        for (int k = 0; k < r.path.piece_count(); ++k) {
+          const CameraPath piece = r.path.piece_path(k);
+          nlohmann::json j = {{"piece", k},
+                              {"frames", piece.size()},
+                              {"first_index", piece.empty() ? 0 : piece.frames.front().index},
+                              {"last_index", piece.empty() ? 0 : piece.frames.back().index},
+                              {"length", piece.length()},
+                              {"placed", r.path.piece_placed(k)},
+                              {"scale_source", piece.scale_source}};
+          if (!r.path.pieces.empty()) {
+            j["scale_factor"] = r.path.pieces[k].scale_factor;
+            j["break_reason"] = r.path.pieces[k].break_reason;
+          }
+          pieces.push_back(std::move(j));
+        }
+        const nlohmann::json summary = {{"capture", options->capture},
+                                        {"pieces", pieces},
+                                        {"joins", r.joins},
+                                        {"frames", r.path.size()},
+                                        {"first_index", positions.empty() ? 0 : positions.front()},
+                                        {"last_index", positions.empty() ? 0 : positions.back()},
+                                        {"stride", options->stride},
+                                        {"keyframes", r.keyframes.size()},
+                                        {"points", r.points},
+                                        {"length", r.path.length()},
+                                        {"scale_source", r.scale_source},
+                                        {"flagged_frames", r.flagged_frames},
+                                        {"loop_closures", r.loop_closures},
+                                        {"loop_frames", r.loop_frames},
+                                        {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
+                                        {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
+                                        {"anchors", anchors.size()},
+                                        {"anchor_residuals", residuals},
+                                        {"out", options->out}};
+        if (options->json) {
+          std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+        } else {
+          std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
+                    << r.points << " points), path length " << std::fixed << std::setprecision(2)
+                    << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
+                    << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged, "
+                    << r.loop_closures << " loop closures\n";
+          if (r.path.piece_count() > 1) {
+            std::cout << "The images do not connect everywhere: the path is in " << r.path.piece_count()
+                      << " pieces, each with its own scale; place each on the plan with its own anchors\n";
+            for (int k = 0; k < r.path.piece_count(); ++k) {
+              const PathPiece& p = r.path.pieces[k];
+              std::cout << "  piece " << k << ": frames " << p.first_index << "-" << p.last_index
+                        << ", scale from " << p.scale_source << (p.placed ? "" : ", unplaced")
+                        << (p.break_reason.empty() ? "" : " (" + p.break_reason + ")") << "\n";
             }
-            EgomotionOptions eo;
-            eo.camera_height_m = options->camera_height;
-            eo.klt.work_width = options->work_width;
-            eo.loop.enabled = !options->no_loop_closure;
-            if (options->known_distance.size() == 3) {
-              // Capture positions to positions among the tracked frames.
-              auto tracked = [&](double frame) {
-                const auto it = std::find(positions.begin(), positions.end(), static_cast<int>(frame));
-                if (it == positions.end())
-                  throw Error("--known-distance: frame " + std::to_string(static_cast<int>(frame)) +
-                              " is not among the tracked frames (see --first, --last, --stride)");
-                return static_cast<int>(it - positions.begin());
-              };
-              eo.scale_frame_a = tracked(options->known_distance[0]);
-              eo.scale_frame_b = tracked(options->known_distance[1]);
-              eo.scale_distance_m = options->known_distance[2];
-              const std::string bad = eo.check();
-              if (!bad.empty()) throw Error("--known-distance: " + bad);
-            }
-            int last_percent = -1;
-            std::string last_stage;
-            auto progress = [&](const std::string& stage, double f) {
-              const int percent = static_cast<int>(std::floor(100 * f));
-              if (!options->quiet && (percent / 10 != last_percent / 10 || stage != last_stage)) {
-                std::cerr << "track: " << stage << " " << percent << "%\n";
-                last_percent = percent;
-                last_stage = stage;
-              }
-              return true;
-            };
-            EgomotionResult r = EgomotionTracker::run(
-                n, [&](int i) { return source->read(i); }, eo, progress);
-            for (int i = 0; i < n && i < static_cast<int>(r.path.frames.size()); ++i) {
-              r.path.frames[i].index = positions[i];
-              if (source->kind() == CaptureKind::kImageFolder) r.path.frames[i].file = source->frame_name(i);
-            }
-            AnchorRefinementReport anchor_report;
-            if (!anchors.empty()) {
-              if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
-              r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report);
-              // Two anchors or more fix the scale too.
-              if (anchors.size() >= 2) r.path.scale_source = r.scale_source = "anchors";
-            }
-            double worst_residual = 0.0;
-            nlohmann::json residuals = nlohmann::json::array();
-            for (const AnchorResidual& a : anchor_report.residuals) {
-              worst_residual = std::max(worst_residual, a.distance_m);
-              residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
-            }
-            if (!options->out.empty()) write_path_file(r.path, options->out);
-            const nlohmann::json summary = {{"capture", options->capture},
-                                            {"frames", r.path.size()},
-                                            {"first_index", positions.empty() ? 0 : positions.front()},
-                                            {"last_index", positions.empty() ? 0 : positions.back()},
-                                            {"stride", options->stride},
-                                            {"keyframes", r.keyframes.size()},
-                                            {"points", r.points},
-                                            {"length", r.path.length()},
-                                            {"scale_source", r.scale_source},
-                                            {"flagged_frames", r.flagged_frames},
-                                            {"loop_closures", r.loop_closures},
-                                            {"loop_frames", r.loop_frames},
-                                            {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
-                                            {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
-                                            {"anchors", anchors.size()},
-                                            {"anchor_residuals", residuals},
-                                            {"out", options->out}};
-            if (options->json) {
-              std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-            } else {
-              std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
-                        << r.points << " points), path length " << std::fixed << std::setprecision(2)
-                        << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
-                        << ", scale from " << r.scale_source << ", " << r.flagged_frames
-                        << " frames flagged, " << r.loop_closures << " loop closures\n";
-              if (!anchors.empty())
-                std::cout << "Aligned and refined with " << anchors.size() << " anchors from "
-                          << options->anchors << ": largest anchor residual " << std::setprecision(3)
-                          << worst_residual << " m, " << anchor_report.iterations << " iterations\n";
-              if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
-            }
-            return kExitOk;
-          }};
+          }
+          if (!anchors.empty())
+            std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
+                      << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "
+                      << anchor_report.iterations << " iterations\n";
+          if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
+        }
+        return kExitOk;
+      }};
 }
 
 }  // namespace plenopath::cli

@@ -5,8 +5,8 @@
 
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
-#include "processing/egomotion/egomotion.h"
 #include "processing/capture/frame_source.h"
+#include "processing/egomotion/egomotion.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/project_document.h"
@@ -55,14 +55,16 @@ widgets::TaskFunction track_path_task() {
     progress.throw_if_cancelled();
     if (result.cancelled) throw TaskCancelled{};
     // The tracker numbers frames 0..n-1 in source order; the project uses capture indices.
-    for (PathFrame& f : result.path.frames) {
-      const int i = f.index;
-      if (project.capture.kind == CaptureKind::kVideo)
-        f.index = project.capture.first_frame + i * std::max(1, project.capture.stride);
+    std::vector<int> positions(result.path.size());
+    for (int i = 0; i < static_cast<int>(positions.size()); ++i)
+      positions[i] = project.capture.kind == CaptureKind::kVideo
+                         ? project.capture.first_frame + i * std::max(1, project.capture.stride)
+                         : i;
+    for (PathFrame& f : result.path.frames)
       if (project.capture.kind == CaptureKind::kImageFolder &&
-          i < static_cast<int>(project.capture.frame_names.size()))
-        f.file = project.capture.frame_names[i];
-    }
+          f.index < static_cast<int>(project.capture.frame_names.size()))
+        f.file = project.capture.frame_names[f.index];
+    renumber_frames(&result.path, positions);
     result.path.scale_source = result.scale_source;
     project.path = std::move(result.path);
     project.visibility = {};  // cells belong to the old path

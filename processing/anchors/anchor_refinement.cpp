@@ -134,23 +134,28 @@ Similarity2 similarity_to_anchors(const CameraPath& path, const Anchors& anchors
     to.push_back(a.position);
   }
   if (anchors.size() == 1) {
+    // One anchor: a translation, or with the anchor's heading also the rotation about it.
     Similarity2 s;
-    s.translation = to[0] - from[0];
+    if (anchors[0].heading)
+      s.rotation = wrap_angle(*anchors[0].heading - path.frames[position_of(path, anchors[0].frame)].heading);
+    const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
+    s.translation =
+        to[0] - Eigen::Vector2d(c * from[0].x() - sn * from[0].y(), sn * from[0].x() + c * from[0].y());
     return s;
   }
   return align_similarity(from, to);
 }
 
-CameraPath align_path_to_anchors(const CameraPath& path, const Anchors& anchors) {
+static CameraPath align_one_piece(const CameraPath& path, const Anchors& anchors) {
   const Similarity2 s = similarity_to_anchors(path, anchors);
   CameraPath out = path;
   for (PathFrame& f : out.frames) apply(s, &f);
   return out;
 }
 
-CameraPath preview_path_with_anchors(const CameraPath& path, const Anchors& anchors) {
+static CameraPath preview_one_piece(const CameraPath& path, const Anchors& anchors) {
   if (anchors.empty()) return path;
-  if (anchors.size() == 1) return align_path_to_anchors(path, anchors);
+  if (anchors.size() == 1) return align_one_piece(path, anchors);
   // Anchors in path order, each with its position along the path.
   std::vector<std::pair<std::size_t, const Anchor*>> ordered;
   for (const Anchor& a : anchors) ordered.emplace_back(position_of(path, a.frame), &a);
@@ -207,11 +212,10 @@ void AnchorRefinementOptions::check() const {
     throw Error("anchor refinement: drift sigmas must be > 0");
 }
 
-CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
-                                    const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                    const AnchorRefinementProgress& progress,
-                                    const std::vector<GpsPrior>& gps) {
-  options.check();
+static CameraPath refine_one_piece(const CameraPath& path, const Anchors& anchors,
+                                   const AnchorRefinementOptions& options, AnchorRefinementReport* report,
+                                   const AnchorRefinementProgress& progress,
+                                   const std::vector<GpsPrior>& gps) {
   if (path.empty()) throw Error("anchor refinement: the path is empty");
   // GPS fixes on frames the path has; they align the path like anchors when there are no anchors.
   std::vector<GpsPrior> fixes;
@@ -225,7 +229,7 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
   Anchors alignment = anchors;
   if (anchors.empty())
     for (const GpsPrior& g : fixes) alignment.push_back({g.frame, g.plan_xy, std::nullopt});
-  const CameraPath start = align_path_to_anchors(path, alignment);
+  const CameraPath start = align_one_piece(path, alignment);
   std::vector<std::array<double, 3>> poses(start.frames.size());
   for (std::size_t i = 0; i < poses.size(); ++i)
     poses[i] = {start.frames[i].x, start.frames[i].y, start.frames[i].heading};
@@ -306,6 +310,96 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
     if (anchor.heading) res.heading_error_deg = std::abs(degrees(wrap_angle(f.heading - *anchor.heading)));
     r.residuals.push_back(res);
   }
+  return out;
+}
+
+namespace {
+
+// Runs `place` on each piece of `path` that has anchors (a path without pieces is one piece) and writes the
+// placed frames back; a piece placed so is marked placed. Pieces without anchors stay as they are.
+template <class Place>
+CameraPath place_pieces(const CameraPath& path, const Anchors& anchors, Place&& place) {
+  for (const Anchor& a : anchors) position_of(path, a.frame);  // validates every anchor first
+  if (path.piece_count() == 1) return place(path, anchors);
+  CameraPath out = path;
+  for (int k = 0; k < path.piece_count(); ++k) {
+    CameraPath piece = path.piece_path(k);
+    Anchors own;
+    for (const Anchor& a : anchors)
+      if (piece.find_frame(a.frame)) own.push_back(a);
+    if (own.empty()) continue;
+    const CameraPath placed = place(piece, own);
+    for (const PathFrame& f : placed.frames) {
+      PathFrame& target = out.frames[position_of(out, f.index)];
+      target.x = f.x;
+      target.y = f.y;
+      target.heading = f.heading;
+    }
+    out.pieces[static_cast<std::size_t>(k)].placed = true;
+  }
+  return out;
+}
+
+}  // namespace
+
+CameraPath align_path_to_anchors(const CameraPath& path, const Anchors& anchors) {
+  if (anchors.empty()) throw Error("aligning a path needs at least one anchor");
+  return place_pieces(path, anchors,
+                      [](const CameraPath& p, const Anchors& a) { return align_one_piece(p, a); });
+}
+
+CameraPath preview_path_with_anchors(const CameraPath& path, const Anchors& anchors) {
+  if (anchors.empty()) return path;
+  return place_pieces(path, anchors,
+                      [](const CameraPath& p, const Anchors& a) { return preview_one_piece(p, a); });
+}
+
+CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
+                                    const AnchorRefinementOptions& options, AnchorRefinementReport* report,
+                                    const AnchorRefinementProgress& progress,
+                                    const std::vector<GpsPrior>& gps) {
+  options.check();
+  if (path.piece_count() == 1) return refine_one_piece(path, anchors, options, report, progress, gps);
+  // In pieces: each piece with anchors (or two GPS fixes) is refined on its own; the others stay unplaced.
+  if (path.empty()) throw Error("anchor refinement: the path is empty");
+  for (const Anchor& a : anchors) position_of(path, a.frame);
+  AnchorRefinementReport total;
+  CameraPath out = path;
+  bool any = false;
+  for (int k = 0; k < path.piece_count(); ++k) {
+    const CameraPath piece = path.piece_path(k);
+    Anchors own;
+    for (const Anchor& a : anchors)
+      if (piece.find_frame(a.frame)) own.push_back(a);
+    std::vector<GpsPrior> own_gps;
+    for (const GpsPrior& g : gps)
+      if (piece.find_frame(g.frame) && g.sigma_m > 0) own_gps.push_back(g);
+    if (own.empty() && own_gps.size() < 2) continue;
+    any = true;
+    AnchorRefinementReport r;
+    const CameraPath placed = refine_one_piece(piece, own, options, &r, progress, own_gps);
+    total.iterations += r.iterations;
+    total.initial_cost += r.initial_cost;
+    total.final_cost += r.final_cost;
+    total.message += (total.message.empty() ? "" : "; ") + ("piece " + std::to_string(k) + ": " + r.message);
+    total.residuals.insert(total.residuals.end(), r.residuals.begin(), r.residuals.end());
+    if (r.cancelled) {
+      total.cancelled = true;
+      if (report) *report = total;
+      return path;
+    }
+    for (const PathFrame& f : placed.frames) {
+      PathFrame& target = out.frames[position_of(out, f.index)];
+      target.x = f.x;
+      target.y = f.y;
+      target.heading = f.heading;
+    }
+    out.pieces[static_cast<std::size_t>(k)].placed = true;
+  }
+  if (!any)
+    throw Error(
+        "anchor refinement: place at least one anchor on a piece (or give GPS fixes on two frames or more)");
+  if (report) *report = total;
   return out;
 }
 

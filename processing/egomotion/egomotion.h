@@ -13,6 +13,9 @@
 //      against the refined points;
 //   4. metric scale from the camera height (floor points lie at -h) or a known distance, else relative;
 //   5. frames that cannot be trusted are flagged with a reason (model/camera_path.h FrameFlag).
+// Where the images stop connecting (capture_pieces.cpp), steps 2-5 run on each piece on its own: a broken
+// capture comes back in pieces (CameraPath::pieces), each with its own scale and gauge, never bridged by a
+// guess. Piece 0 is placed (its first frame at the origin, heading 0); the others are unplaced.
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
@@ -30,12 +33,27 @@
 
 namespace plenopath {
 
+// When the frames stop connecting (see capture_pieces.cpp).
+struct PieceOptions {
+  int min_link_tracks = 20;  // fewer tracks continue from a frame into the next: not connected by tracks
+  // A run of connected frames shorter than this (or with fewer textured frames) is no piece of its own: its
+  // frames go with the piece before, bridged.
+  int min_piece_frames = 10;
+  int join_search_frames = 15;  // described frames this near either side of a stretch are matched to join it
+  int join_max_pairs = 24;      // frame pairs tried per stretch, nearest first
+  int join_min_inliers = 15;    // verified descriptor matches of a frame pair across the stretch
+  // ... and two such pairs must agree on the turn across it (carried by the tracked turns on each side).
+  double join_agreement_deg = 1.0;
+  std::string check() const;  // empty when valid
+};
+
 struct EgomotionOptions {
   RingOptions ring;
   KltOptions klt;
   PlanarTwoViewOptions two_view;
   RefinementOptions refinement;
-  LoopClosureOptions loop;             // between the windowed and the global refinement
+  LoopClosureOptions loop;  // between the windowed and the global refinement
+  PieceOptions pieces;
   double keyframe_parallax_deg = 2.0;  // median rotation-free parallax since the last keyframe that makes one
   double keyframe_max_turn_deg = 8.0;  // heading change since the last keyframe that cuts a chunk
   double keyframe_min_shared = 0.5;    // fraction of the last keyframe's tracks still seen; below it, cut
@@ -43,6 +61,9 @@ struct EgomotionOptions {
   // is taken for a wrong solution.
   double max_step_turn_disagreement_deg = 3.0;
   double max_step_ratio = 5.0;  // a keyframe step this many times above or below the recent median is bridged
+  // ... unless 20 points or more measure it with a median relative deviation below this (a real jump: frames
+  // dropped, video subsampled).
+  double max_step_spread = 0.1;
   double min_triangulation_deg = 1.0;  // rays of a point must span at least this angle
   double max_initial_error_deg = 1.0;  // observations this far off after initialisation are dropped
   int min_point_keyframes = 3;         // a point enters the refinement when seen from this many keyframes
@@ -65,9 +86,13 @@ struct EgomotionOptions {
 };
 
 struct EgomotionResult {
-  CameraPath path;                       // one pose per frame, headings radians; frame 0 at (0, 0), heading 0
-  std::vector<double> ring_headings;     // step 1's headings per frame (radians, frame 0 = 0)
-  std::vector<double> tracked_headings;  // frame-to-frame turns from the KLT tracks, chained (radians)
+  // One pose per frame, headings radians; frame 0 at (0, 0), heading 0. In pieces (path.pieces) where the
+  // images do not connect: each later piece unplaced, its first frame at (0, 0), heading 0.
+  CameraPath path;
+  int joins = 0;                      // stretches without tracks whose two sides descriptor matches connected
+  std::vector<int> continued_tracks;  // per frame: KLT tracks continued into it from the frame before
+  std::vector<double> ring_headings;  // step 1's headings per frame (radians, frame 0 = 0)
+  std::vector<double> tracked_headings;       // frame-to-frame turns from the KLT tracks, chained (radians)
   std::vector<Eigen::Vector3d> coarse_poses;  // step 2's (x, y, heading) per frame, final scale
   std::vector<int> keyframes;                 // frame indices
   int points = 0;
@@ -76,8 +101,8 @@ struct EgomotionResult {
   int loop_closures = 0;                         // places recognised as revisited (frame pairs)
   std::vector<std::pair<int, int>> loop_frames;  // those pairs: (earlier frame, later frame)
   int merged_points = 0;                         // points tied to an earlier visit's by them
-  std::string scale_source;                      // "camera_height", "distance", or "relative"
-  double scale_factor = 1.0;                     // metres per internal unit applied at the end
+  std::string scale_source;                      // piece 0's: "camera_height", "distance", or "relative"
+  double scale_factor = 1.0;                     // piece 0's metres per internal unit applied at the end
   int floor_points = 0;                          // points used for the camera-height scale
   int flagged_frames = 0;
   bool cancelled = false;

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/features2d.hpp>
 #include <sstream>
 
@@ -13,7 +14,8 @@ namespace {
 
 double azimuth(const Eigen::Vector3d& b) { return std::atan2(b.y(), b.x()); }
 
-// Mutual nearest neighbours that also pass the ratio test: (row in a, row in b).
+}  // namespace
+
 std::vector<std::pair<int, int>> match_descriptors(const cv::Mat& a, const cv::Mat& b, double ratio) {
   std::vector<std::pair<int, int>> out;
   if (a.rows < 2 || b.rows < 2) return out;
@@ -29,8 +31,6 @@ std::vector<std::pair<int, int>> match_descriptors(const cv::Mat& a, const cv::M
       out.emplace_back(m[0].queryIdx, m[0].trainIdx);
   return out;
 }
-
-}  // namespace
 
 std::string LoopClosureOptions::check() const {
   std::ostringstream o;
@@ -58,6 +58,55 @@ FrameDescriptors describe_frame(const cv::Mat& gray, int frame, const std::vecto
   orb->compute(gray, keypoints, out.descriptors);  // drops keypoints too near the border
   for (const cv::KeyPoint& k : keypoints) out.tracks.push_back(tracks[static_cast<std::size_t>(k.class_id)]);
   return out;
+}
+
+bool verify_frame_match(const FrameDescriptors& fa, const FrameDescriptors& fb,
+                        const std::function<Eigen::Vector3d(int, int)>& bearing, double turn_guess,
+                        double max_turn_error, int min_inliers, double ratio,
+                        const PlanarTwoViewOptions& two_view, std::mt19937& rng, LoopMatch* match,
+                        double* direction) {
+  if (direction) *direction = std::numeric_limits<double>::quiet_NaN();
+  if (fa.descriptors.empty() || fb.descriptors.empty()) return false;
+  const std::vector<std::pair<int, int>> matches = match_descriptors(fa.descriptors, fb.descriptors, ratio);
+  if (static_cast<int>(matches.size()) < min_inliers) return false;
+  std::vector<Eigen::Vector3d> ba, bb;
+  std::vector<double> azimuth_change;
+  for (const auto& [ia, ib] : matches) {
+    ba.push_back(bearing(fa.tracks[static_cast<std::size_t>(ia)], fa.frame));
+    bb.push_back(bearing(fb.tracks[static_cast<std::size_t>(ib)], fb.frame));
+    azimuth_change.push_back(std::remainder(azimuth(ba.back()) - azimuth(bb.back()), 2 * M_PI));
+  }
+  if (!std::isfinite(turn_guess)) turn_guess = median(azimuth_change);  // no prior: the matches' own
+  PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
+  std::vector<bool> inlier = rel.inlier;
+  double turn = rel.turn;
+  if (!rel.valid) {
+    // Back on the very spot: no parallax to verify a direction with, but a pure turn must explain the
+    // matches (each bearing rotated by the median azimuth change lands on its match).
+    turn = median(azimuth_change);
+    inlier.assign(ba.size(), false);
+    int count = 0;
+    for (std::size_t k = 0; k < ba.size(); ++k) {
+      const double c = std::cos(-turn), s = std::sin(-turn);
+      const Eigen::Vector3d r(c * ba[k].x() - s * ba[k].y(), s * ba[k].x() + c * ba[k].y(), ba[k].z());
+      inlier[k] = std::atan2(r.cross(bb[k]).norm(), r.dot(bb[k])) < 3 * two_view.threshold;
+      count += inlier[k];
+    }
+    if (count < min_inliers || count < static_cast<int>(ba.size()) / 2) return false;
+  } else if (rel.inliers < min_inliers) {
+    return false;
+  }
+  if (std::abs(std::remainder(turn - turn_guess, 2 * M_PI)) > max_turn_error) return false;
+  match->frame_a = fa.frame;
+  match->frame_b = fb.frame;
+  match->turn = turn;
+  match->track_pairs.clear();
+  for (std::size_t k = 0; k < matches.size(); ++k)
+    if (inlier[k])
+      match->track_pairs.emplace_back(fa.tracks[static_cast<std::size_t>(matches[k].first)],
+                                      fb.tracks[static_cast<std::size_t>(matches[k].second)]);
+  if (direction && rel.valid) *direction = rel.direction;
+  return true;
 }
 
 std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& described,
@@ -94,46 +143,12 @@ std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& d
     if (best < 0) continue;
     const FrameDescriptors& fa = described[static_cast<std::size_t>(best)];
     const FrameDescriptors& fb = described[b];
-    const std::vector<std::pair<int, int>> matches =
-        match_descriptors(fa.descriptors, fb.descriptors, options.ratio);
-    if (static_cast<int>(matches.size()) < options.min_inliers) continue;
-    std::vector<Eigen::Vector3d> ba, bb;
-    std::vector<double> azimuth_change;
-    for (const auto& [ia, ib] : matches) {
-      ba.push_back(bearing(fa.tracks[static_cast<std::size_t>(ia)], fa.frame));
-      bb.push_back(bearing(fb.tracks[static_cast<std::size_t>(ib)], fb.frame));
-      azimuth_change.push_back(std::remainder(azimuth(ba.back()) - azimuth(bb.back()), 2 * M_PI));
-    }
     const double turn_guess =
         std::remainder(poses[b].z() - poses[static_cast<std::size_t>(best)].z(), 2 * M_PI);
-    PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn_guess, two_view, rng);
-    std::vector<bool> inlier = rel.inlier;
-    double turn = rel.turn;
-    if (!rel.valid) {
-      // Back on the very spot: no parallax to verify a direction with, but a pure turn must explain the
-      // matches (each bearing rotated by the median azimuth change lands on its match).
-      turn = median(azimuth_change);
-      inlier.assign(ba.size(), false);
-      int count = 0;
-      for (std::size_t k = 0; k < ba.size(); ++k) {
-        const double c = std::cos(-turn), s = std::sin(-turn);
-        const Eigen::Vector3d r(c * ba[k].x() - s * ba[k].y(), s * ba[k].x() + c * ba[k].y(), ba[k].z());
-        inlier[k] = std::atan2(r.cross(bb[k]).norm(), r.dot(bb[k])) < 3 * two_view.threshold;
-        count += inlier[k];
-      }
-      if (count < options.min_inliers || count < static_cast<int>(ba.size()) / 2) continue;
-    } else if (rel.inliers < options.min_inliers) {
-      continue;
-    }
-    if (std::abs(std::remainder(turn - turn_guess, 2 * M_PI)) > max_turn_error) continue;
     LoopMatch m;
-    m.frame_a = fa.frame;
-    m.frame_b = fb.frame;
-    m.turn = turn;
-    for (std::size_t k = 0; k < matches.size(); ++k)
-      if (inlier[k])
-        m.track_pairs.emplace_back(fa.tracks[static_cast<std::size_t>(matches[k].first)],
-                                   fb.tracks[static_cast<std::size_t>(matches[k].second)]);
+    if (!verify_frame_match(fa, fb, bearing, turn_guess, max_turn_error, options.min_inliers, options.ratio,
+                            two_view, rng, &m))
+      continue;
     out.push_back(std::move(m));
     next_allowed = fb.frame + options.spacing_frames;
   }

@@ -50,6 +50,20 @@ struct LoopMatch {
   double turn = 0.0;                             // verified heading of b minus a, radians
 };
 
+// Mutual nearest neighbours that also pass Lowe's ratio test on Hamming distances: (row in a, row in b).
+std::vector<std::pair<int, int>> match_descriptors(const cv::Mat& a, const cv::Mat& b, double ratio);
+
+// Matches two described frames and verifies the matches by planar two-view geometry started from
+// turn_guess (NaN: the median azimuth change of the matches) (or, when the frames are on the very spot, by a
+// pure turn). A match is accepted with at least min_inliers verified pairs and a verified turn within
+// max_turn_error (radians) of the guess; returns false otherwise. `direction` (when not null) gets B's
+// direction seen from A in A's frame, NaN when the baseline is too short to see it.
+bool verify_frame_match(const FrameDescriptors& fa, const FrameDescriptors& fb,
+                        const std::function<Eigen::Vector3d(int, int)>& bearing, double turn_guess,
+                        double max_turn_error, int min_inliers, double ratio,
+                        const PlanarTwoViewOptions& two_view, std::mt19937& rng, LoopMatch* match,
+                        double* direction = nullptr);
+
 // pose(frame): estimated (x, y, heading); travelled(frame): estimated path length up to it; bearing(track,
 // frame): the track's unit bearing in that frame (camera frame). typical_step: the median keyframe step in
 // the same units as the poses.

@@ -12,11 +12,11 @@
 
 #include "model/atomic_file.h"
 #include "model/error.h"
+#include "processing/capture/frame_source.h"
 #include "processing/export/player_assets.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
 #include "processing/export/zip_writer.h"
-#include "processing/capture/frame_source.h"
 #include "processing/hotspots/hotspot_validation.h"
 
 namespace plenopath {
@@ -228,6 +228,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   options.check();
   if (project.path.empty()) throw Error("export: the project has no camera path (track or import one first)");
   if (project.keyframes.empty()) throw Error("export: the project has no keyframes (run sampling first)");
+  require_placed(project.path, "export");
   auto report_progress = [&](double fraction, const std::string& stage) {
     if (progress && !progress(fraction, stage)) throw Error("export cancelled");
   };

@@ -175,6 +175,7 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
                                                   const std::function<void(double)>& progress) const {
   VisibilityCells result;
   if (path.frames.empty()) return result;
+  require_placed(path, "visibility");
   std::vector<Eigen::Vector2d> points;
   for (const auto& f : path.frames) points.push_back(f.position());
   const std::vector<double> s_at = path.arc_lengths();

@@ -34,6 +34,35 @@ import json, sys
 e = json.load(open(sys.argv[1]))
 assert e["ate_pct"] > 5 and e["rot_rms_deg"] > 20, e
 PY
+# An estimate in two pieces, each in a gauge of its own (the second rotated, scaled and moved by hand): the
+# whole path scores badly, each piece on its own exactly.
+python3 - "$tmp" <<'PY'
+import json, math, sys
+d = sys.argv[1]
+truth = json.load(open(f"{d}/truth.json"))["frames"]
+frames = []
+for f in truth:
+    piece = 0 if f["index"] < 15 else 1
+    x, y, h = f["x"], f["y"], math.radians(f["heading_deg"])
+    if piece == 1:
+        a, s = 2.0, 0.5
+        x, y, h = s * (math.cos(a) * x - math.sin(a) * y) - 7, s * (math.sin(a) * x + math.cos(a) * y) + 4, h + a
+    frames.append({"index": f["index"], "x": x, "y": y, "heading_deg": math.degrees(h), "piece": piece})
+pieces = [{"first_index": 0, "last_index": 14, "placed": True},
+          {"first_index": 15, "last_index": 29, "placed": False, "break_reason": "by hand"}]
+json.dump({"units": "m", "frames": frames, "pieces": pieces}, open(f"{d}/pieces.json", "w"))
+PY
+"$cli" eval-path --estimate "$tmp/pieces.json" --truth "$tmp/truth.json" --json > "$tmp/p.json" || fail "pieces exit $?"
+python3 - "$tmp/p.json" <<'PY' || fail "eval-path pieces: $(cat "$tmp/p.json")"
+import json, sys
+e = json.load(open(sys.argv[1]))
+assert e["ate_pct"] > 5, e
+assert [p["piece"] for p in e["pieces"]] == [0, 1], e
+assert [(p["first_index"], p["last_index"]) for p in e["pieces"]] == [(0, 14), (15, 29)], e
+for p in e["pieces"]:
+    assert p["frames_matched"] == 15 and p["ate_rms_m"] < 1e-9 and p["rot_rms_deg"] < 1e-9, p
+assert abs(e["pieces"][1]["scale_error_pct"] - 50.0) < 1e-6, e  # the second piece's metres are half
+PY
 "$cli" eval-path --estimate "$tmp/absent.json" --truth "$tmp/truth.json" 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing estimate: exit $code"
 grep -q "absent.json" "$tmp/err.txt" || fail "missing estimate message: $(cat "$tmp/err.txt")"
@@ -54,6 +83,8 @@ assert s["frames"] == 3, s
 assert s["loop_closures"] == 0 and s["loop_frames"] == [], s  # three frames: nowhere to come back to
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
+assert len(s["pieces"]) == 1 and s["pieces"][0]["placed"] and s["pieces"][0]["frames"] == 3, s
+assert "pieces" not in p and all("piece" not in f for f in p["frames"]), p  # one piece: nothing to say
 PY
 "$cli" track --capture "$tmp/cap" --no-loop-closure --out "$tmp/noloop.json" --quiet > /dev/null 2> "$tmp/err.txt" \
   || fail "track --no-loop-closure exit $?: $(cat "$tmp/err.txt")"

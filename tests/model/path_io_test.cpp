@@ -87,6 +87,63 @@ TEST(PathIo, ErrorsNameFileAndField) {
   fs::remove(f);
 }
 
+// A path in pieces, written by hand as the format documents it: frames carry their piece, the pieces their
+// range, placement and why the one before ended; lengths do not count the jump from one piece to the next.
+TEST(PathIo, ReadsPiecesAndKeepsThemApart) {
+  const std::string f = temp_file("pieces.json");
+  std::ofstream(f)
+      << R"({"units":"m","frames":[)"
+         R"({"index":0,"x":0,"y":0,"heading_deg":0},{"index":1,"x":3,"y":4,"heading_deg":0},)"
+         R"({"index":5,"x":0,"y":0,"heading_deg":0,"piece":1},)"
+         R"({"index":6,"x":1,"y":0,"heading_deg":0,"piece":1}],)"
+         R"("pieces":[{"first_index":0,"last_index":1,"placed":true,"scale_source":"camera_height"},)"
+         R"({"first_index":5,"last_index":6,"placed":false,"scale_factor":0.5,)"
+         R"("break_reason":"nothing connects"}]})";
+  const CameraPath p = read_path_file(f);
+  ASSERT_EQ(p.piece_count(), 2);
+  EXPECT_TRUE(p.piece_placed(0));
+  EXPECT_FALSE(p.piece_placed(1));
+  EXPECT_EQ(p.pieces[1].first_index, 5);
+  EXPECT_EQ(p.pieces[1].break_reason, "nothing connects");
+  EXPECT_EQ(p.pieces[1].scale_factor, 0.5);
+  EXPECT_EQ(p.frames[2].piece, 1);
+  EXPECT_DOUBLE_EQ(p.length(), 5.0 + 1.0);  // 3-4-5 in piece 0, 1 m in piece 1, nothing between
+  const CameraPath second = p.piece_path(1);
+  ASSERT_EQ(second.size(), 2u);
+  EXPECT_EQ(second.frames[0].index, 5);
+  EXPECT_EQ(second.frames[0].piece, 0);
+  // Round trip.
+  write_path_file(p, f);
+  EXPECT_EQ(read_path_file(f), p);
+  // Renumbering tracker frames 0..3 to capture positions moves the pieces' ranges with them.
+  CameraPath tracked = p;
+  for (int i = 0; i < 4; ++i) tracked.frames[i].index = i;
+  tracked.pieces[0] = {0, 1, true, "", 1.0, ""};
+  tracked.pieces[1] = {2, 3, false, "", 1.0, "x"};
+  renumber_frames(&tracked, {10, 12, 20, 22});
+  EXPECT_EQ(tracked.frames[3].index, 22);
+  EXPECT_EQ(tracked.pieces[1].first_index, 20);
+  EXPECT_EQ(tracked.pieces[0].last_index, 12);
+  EXPECT_THROW(renumber_frames(&tracked, {1, 2}), Error);
+}
+
+TEST(PathIo, PiecesThatDoNotAddUpAreRefused) {
+  const std::string f = temp_file("bad_pieces.json");
+  std::ofstream(f) << R"({"units":"m","frames":[{"index":0,"x":0,"y":0,"heading_deg":0,"piece":2}],)"
+                      R"("pieces":[{"first_index":0,"last_index":0}]})";
+  try {
+    read_path_file(f);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(f), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("piece 2"), std::string::npos);
+  }
+  std::ofstream(f) << R"({"units":"m","frames":[{"index":0,"x":0,"y":0,"heading_deg":0,"piece":1},)"
+                      R"({"index":1,"x":0,"y":0,"heading_deg":0,"piece":0}],)"
+                      R"("pieces":[{"first_index":0,"last_index":0},{"first_index":1,"last_index":1}]})";
+  EXPECT_THROW(read_path_file(f), Error);
+}
+
 TEST(Angles, WrapIntoHalfOpenInterval) {
   EXPECT_DOUBLE_EQ(wrap_angle(M_PI), M_PI);
   EXPECT_DOUBLE_EQ(wrap_angle(-M_PI), M_PI);

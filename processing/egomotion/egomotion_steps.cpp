@@ -1,0 +1,119 @@
+#include "processing/egomotion/egomotion_steps.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "processing/egomotion/bearing_cost.h"
+
+namespace plenopath::egomotion_steps {
+
+Eigen::Vector3d rotate_z(const Eigen::Vector3d& v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
+}
+
+void add_flag(PathFrame& f, FrameFlag flag, const std::string& why) {
+  if (f.flags & flag) return;
+  f.flags |= flag;
+  f.reason += (f.reason.empty() ? "" : "; ") + why;
+}
+
+double ray_error(const Eigen::Vector3d& pose, const Eigen::Vector3d& point, const Eigen::Vector3d& bearing) {
+  const Eigen::Vector3d d = rotate_z(bearing, pose.z());
+  const Eigen::Vector3d v = point - Eigen::Vector3d(pose.x(), pose.y(), 0.0);
+  return std::atan2(d.cross(v).norm(), d.dot(v));
+}
+
+int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& points,
+                const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold) {
+  std::vector<PlanarBearingCost> costs;
+  costs.reserve(bearings.size());
+  for (const auto& b : bearings) costs.emplace_back(b);
+  Eigen::Vector3d p = *pose;
+  for (int it = 0; it < 10; ++it) {
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < points.size(); ++k) {
+      double r[3];
+      costs[k](p.data(), points[k].data(), r);
+      Eigen::Matrix<double, 3, 3> j;
+      for (int d = 0; d < 3; ++d) {
+        Eigen::Vector3d q = p;
+        const double h = 1e-7;
+        q[d] += h;
+        double rq[3];
+        costs[k](q.data(), points[k].data(), rq);
+        for (int e = 0; e < 3; ++e) j(e, d) = (rq[e] - r[e]) / h;
+      }
+      const Eigen::Vector3d rv(r[0], r[1], r[2]);
+      const double n = rv.norm();
+      const double w = n <= huber ? 1.0 : huber / n;
+      jtj += w * j.transpose() * j;
+      jtr += w * j.transpose() * rv;
+    }
+    const Eigen::Vector3d step = -(jtj + 1e-9 * Eigen::Matrix3d::Identity()).ldlt().solve(jtr);
+    if (!step.allFinite()) break;
+    p += step;
+    if (step.norm() < 1e-9) break;
+  }
+  int inliers = 0;
+  for (size_t k = 0; k < points.size(); ++k)
+    inliers += ray_error(p, points[k], bearings[k]) < inlier_threshold;
+  *pose = p;
+  return inliers;
+}
+
+int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,
+                      std::vector<int>* point_of_track) {
+  std::vector<int> parent(problem->points.size());
+  for (std::size_t q = 0; q < parent.size(); ++q) parent[q] = static_cast<int>(q);
+  auto root = [&](int q) {
+    while (parent[q] != q) q = parent[q] = parent[parent[q]];
+    return q;
+  };
+  int merged = 0;
+  for (const LoopMatch& m : loops)
+    for (const auto& [ta, tb] : m.track_pairs) {
+      const int pa = (*point_of_track)[ta], pb = (*point_of_track)[tb];
+      if (pa < 0 || pb < 0) continue;
+      const int ra = root(pa), rb = root(pb);
+      if (ra == rb) continue;
+      parent[std::max(ra, rb)] = std::min(ra, rb);
+      ++merged;
+    }
+  if (merged == 0) return 0;
+  std::vector<BundleObservation>& obs = problem->observations;
+  for (BundleObservation& o : obs) o.point = root(o.point);
+  std::sort(obs.begin(), obs.end(), [](const BundleObservation& a, const BundleObservation& b) {
+    return a.point != b.point ? a.point < b.point : a.pose < b.pose;
+  });
+  obs.erase(std::unique(obs.begin(), obs.end(),
+                        [](const BundleObservation& a, const BundleObservation& b) {
+                          return a.point == b.point && a.pose == b.pose;
+                        }),
+            obs.end());
+  for (int& q : *point_of_track)
+    if (q >= 0) q = root(q);
+  return merged;
+}
+
+TrackView::TrackView(const KltTracker& tracker, int frame_count) : klt(&tracker), frame_tracks(frame_count) {
+  const std::vector<FeatureTrack>& all = tracker.tracks();
+  for (int t = 0; t < static_cast<int>(all.size()); ++t)
+    for (const TrackObservation& o : all[t].observations)
+      if (o.frame < frame_count) frame_tracks[o.frame].push_back(t);
+}
+
+const TrackObservation* TrackView::observation(int track, int frame) const {
+  const auto& obs = klt->tracks()[static_cast<std::size_t>(track)].observations;
+  const int k = frame - obs.front().frame;
+  if (k < 0 || k >= static_cast<int>(obs.size())) return nullptr;
+  return &obs[static_cast<std::size_t>(k)];
+}
+
+Eigen::Vector3d TrackView::bearing(int track, int frame) const {
+  return klt->bearing(*observation(track, frame));
+}
+
+}  // namespace plenopath::egomotion_steps

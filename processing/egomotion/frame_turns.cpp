@@ -1,0 +1,76 @@
+// Step 1b of EgomotionTracker::finish(): frame-to-frame turns from the KLT tracks. The rings are coarse
+// indoors (parallax of near walls biases them by degrees, and they drift); the tracks between consecutive
+// frames give each turn to a few hundredths of a degree: the median azimuth change (exact for a turn on the
+// spot), refined by planar two-view geometry when the frames moved enough. Frames without enough tracks keep
+// the ring's turn.
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "processing/egomotion/egomotion_steps.h"
+#include "processing/egomotion/planar_two_view.h"
+#include "processing/util/statistics.h"
+
+namespace plenopath::egomotion_steps {
+namespace {
+constexpr double kLongStepParallax = 0.04;  // radians of median parallax (~2.3 deg): a long step
+constexpr double kLongStepInlierShare = 0.7;
+}  // namespace
+
+void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937& rng,
+                         TrackerMeasurements* m) {
+  const TrackView& view = *m->view;
+  const int n = static_cast<int>(view.frame_tracks.size());
+  m->heading.assign(n, 0.0);
+  // Per frame: the share of the tracks continued from the previous frame that move against the static
+  // scene (off the epipolar geometry of the step, or of a pure turn when the step has no parallax); -1 when
+  // the step could not be solved. Tracks on people walking by, a passing door or the operator: the
+  // refinement rejects them, but a frame where they are many is worth flagging.
+  m->moving_share.assign(n, -1.0);
+  PlanarTwoViewOptions step_options = m->two_view;
+  step_options.turn_scan_deg = 0;
+  step_options.iterations = 32;
+  const double max_disagreement = m->options->max_step_turn_disagreement_deg * M_PI / 180.0;
+  for (int f = 1; f < n; ++f) {
+    const double ring_turn = ring_headings[f] - ring_headings[f - 1];
+    std::vector<Eigen::Vector3d> ba, bb;
+    std::vector<double> azimuth_change;
+    for (int t : view.frame_tracks[f]) {
+      if (!view.observation(t, f - 1)) continue;
+      const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
+      azimuth_change.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
+      // A spread subset is plenty for the two-view turn (tracks are in detection order, i.e. spread).
+      if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || view.frame_tracks[f].size() < 480)) {
+        ba.push_back(a);
+        bb.push_back(b);
+      }
+    }
+    double turn = ring_turn;
+    if (static_cast<int>(azimuth_change.size()) >= m->two_view.min_inliers) {
+      turn = median(azimuth_change);
+      const PlanarRelativePose rel = estimate_planar_relative_pose(ba, bb, turn, step_options, rng);
+      // The median azimuth change is the turn only while the step is short against the scene; across a
+      // long step (frames dropped, subsampled video) parallax biases it, and a two-view solution that most
+      // tracks agree with is the better one.
+      const bool long_step = rel.valid && rel.median_parallax > kLongStepParallax &&
+                             rel.inliers >= kLongStepInlierShare * static_cast<double>(ba.size());
+      const bool solved = rel.valid && (std::abs(rel.turn - turn) < max_disagreement || long_step);
+      if (solved) turn = rel.turn;
+      if (solved || rel.median_parallax < m->two_view.min_parallax) {
+        int moving = 0, total = 0;
+        for (int t : view.frame_tracks[f]) {
+          if (!view.observation(t, f - 1)) continue;
+          const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
+          const Eigen::Vector3d turned = rotate_z(a, -turn);
+          const double error = solved ? std::abs(planar_epipolar_error(a, b, rel.turn, rel.direction))
+                                      : std::atan2(turned.cross(b).norm(), turned.dot(b));
+          moving += error > 3.0 * m->two_view.threshold;
+          ++total;
+        }
+        m->moving_share[f] = double(moving) / total;
+      }
+    }
+    m->heading[f] = m->heading[f - 1] + turn;
+  }
+}
+
+}  // namespace plenopath::egomotion_steps
