@@ -31,6 +31,7 @@
 #include "processing/anchors/anchor_refinement.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/map_hotspot_markers.h"
+#include "widgets/map_pieces.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -268,11 +269,16 @@ void MapView::on_document_changed(unsigned flags) {
   if (flags & (kPlanChanged | kVisibilityChanged)) rebuild_plan();
   if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
   if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
-  if (flags & (kPathChanged | kAnchorsChanged))
-    rebuild_anchors(document_.project().path, document_.project().anchors);
+  if (flags & (kPathChanged | kAnchorsChanged)) rebuild_anchors(drawn_path_, document_.project().anchors);
+  int unplaced = 0;
+  for (int k = 0; k < document_.project().path.piece_count(); ++k)
+    unplaced += !document_.project().path.piece_placed(k);
   hint_->SetInput(
-      document_.project().path.empty()
-          ? ""
+      document_.project().path.empty() ? ""
+      : unplaced > 0
+          ? (std::to_string(document_.project().path.piece_count()) + " pieces, " + std::to_string(unplaced) +
+             " unplaced (right of the plan): Ctrl+drag one of a piece's frames onto the plan to place it")
+                .c_str()
           : "Ctrl+drag a frame: anchor it where it really was  ·  + Shift: snap to a plan corner  ·  "
             "drag an anchor to move it");
   if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
@@ -329,7 +335,10 @@ void MapView::rebuild_path() {
   set_path_geometry(document_.project().path);
 }
 
-void MapView::set_path_geometry(const CameraPath& path_frames) {
+void MapView::set_path_geometry(const CameraPath& path) {
+  drawn_path_ = path_as_drawn(path, document_.project().plan.extents());
+  const CameraPath& path_frames = drawn_path_;
+  const bool in_pieces = path_frames.piece_count() > 1;
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> lines;
   vtkNew<vtkUnsignedCharArray> colours;
@@ -338,16 +347,18 @@ void MapView::set_path_geometry(const CameraPath& path_frames) {
   for (std::size_t i = 0; i < path_frames.size(); ++i)
     points->InsertNextPoint(path_frames.frames[i].x, path_frames.frames[i].y, kPathZ);
   for (std::size_t i = 0; i + 1 < path_frames.size(); ++i) {
+    if (path_frames.frames[i].piece != path_frames.frames[i + 1].piece) continue;  // pieces do not connect
     const vtkIdType ids[2] = {static_cast<vtkIdType>(i), static_cast<vtkIdType>(i + 1)};
     lines->InsertNextCell(2, ids);
-    const auto c = cell_colour(i < path_cells_.size() ? path_cells_[i] : -1);
+    const auto c = in_pieces ? piece_colour(path_frames.frames[i].piece)
+                             : cell_colour(i < path_cells_.size() ? path_cells_[i] : -1);
     colours->InsertNextTypedTuple(c.data());
   }
-  vtkNew<vtkPolyData> path;
-  path->SetPoints(points);
-  path->SetLines(lines);
-  path->GetCellData()->SetScalars(colours);
-  set_polydata(path_actor_, path);
+  vtkNew<vtkPolyData> lines_data;
+  lines_data->SetPoints(points);
+  lines_data->SetLines(lines);
+  lines_data->GetCellData()->SetScalars(colours);
+  set_polydata(path_actor_, lines_data);
 }
 
 void MapView::rebuild_anchors(const CameraPath& path, const Anchors& anchors) {
@@ -378,7 +389,7 @@ void MapView::rebuild_keyframes() {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> verts;
   for (int index : p.keyframes.indices) {
-    const PathFrame* f = p.path.find_frame(index);
+    const PathFrame* f = drawn_path_.find_frame(index);
     if (!f) continue;
     const vtkIdType id = points->InsertNextPoint(f->x, f->y, kKeyframeZ);
     verts->InsertNextCell(1, &id);
@@ -394,8 +405,8 @@ void MapView::rebuild_current() {
   const int position = document_.current_position();
   vtkNew<vtkPolyData> marker, cone, envelope;
   std::string caption;
-  if (!p.path.empty() && position >= 0 && position < static_cast<int>(p.path.size())) {
-    const PathFrame& f = p.path.frames[position];
+  if (!drawn_path_.empty() && position >= 0 && position < static_cast<int>(drawn_path_.size())) {
+    const PathFrame& f = drawn_path_.frames[position];
     vtkNew<vtkPoints> mp;
     vtkNew<vtkCellArray> mv;
     const vtkIdType id = mp->InsertNextPoint(f.x, f.y, kCurrentZ);
@@ -468,7 +479,7 @@ void MapView::reset_camera() {
     lo = lo.cwiseMin(e.min);
     hi = hi.cwiseMax(e.max);
   }
-  for (const PathFrame& f : p.path.frames) {
+  for (const PathFrame& f : drawn_path_.frames) {
     lo = lo.cwiseMin(f.position());
     hi = hi.cwiseMax(f.position());
   }
@@ -540,7 +551,7 @@ double MapView::metres_per_pixel() const {
 }
 
 int MapView::frame_near(const QPoint& pixel, double radius_px) {
-  const CameraPath& path = document_.project().path;
+  const CameraPath& path = drawn_path_;  // where the frames are drawn (unplaced pieces in the tray)
   const Eigen::Vector2d q = plan_point_at(pixel);
   int best = -1;
   double best_distance = radius_px * metres_per_pixel();
@@ -658,7 +669,7 @@ void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
     emit message(QString::fromStdString(e.what()));
   }
   set_path_geometry(drag_.preview);
-  rebuild_anchors(drag_.preview, drag_.anchors);
+  rebuild_anchors(drawn_path_, drag_.anchors);
   char text[160];
   std::snprintf(text, sizeof text, "anchor frame %d -> (%.2f, %.2f) m%s  ·  Esc cancels", drag_.frame,
                 drag_.target.x(), drag_.target.y(), drag_.snapped ? "  [snapped to a plan corner]" : "");
@@ -669,8 +680,9 @@ void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
   drag_.ghost_drawn = true;
   vtkNew<vtkPoints> ghost_points;
   vtkNew<vtkCellArray> ghost_lines;
-  for (std::size_t i = 0; i < path.size(); ++i)
-    ghost_points->InsertNextPoint(path.frames[i].x, path.frames[i].y, kGhostPathZ);
+  const CameraPath ghost_path = path_as_drawn(path, document_.project().plan.extents());
+  for (std::size_t i = 0; i < ghost_path.size(); ++i)
+    ghost_points->InsertNextPoint(ghost_path.frames[i].x, ghost_path.frames[i].y, kGhostPathZ);
   ghost_lines->InsertNextCell(static_cast<vtkIdType>(path.size()));
   for (std::size_t i = 0; i < path.size(); ++i) ghost_lines->InsertCellPoint(static_cast<vtkIdType>(i));
   vtkNew<vtkPolyData> ghost;
@@ -709,7 +721,7 @@ void MapView::end_anchor_drag(bool apply) {
   }
   // Cancelled or refused: back to the document's path and anchors.
   set_path_geometry(document_.project().path);
-  rebuild_anchors(document_.project().path, document_.project().anchors);
+  rebuild_anchors(drawn_path_, document_.project().anchors);
   rebuild_current();
   request_render();
 }

@@ -57,6 +57,8 @@ class MapView : public QVTKOpenGLNativeWidget {
   // How to place anchors, as the tooltip and the status bar say it.
   static QString anchor_hint();
   bool is_dragging_anchor() const { return drag_.active; }
+  // The path as drawn: the document's (or the drag's preview), unplaced pieces in the tray beside the plan.
+  const CameraPath& drawn_path() const { return drawn_path_; }
   // The path as previewed during an anchor drag (empty when not dragging).
   const CameraPath& anchor_preview() const { return drag_.preview; }
 
@@ -122,6 +124,7 @@ class MapView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkTextActor> caption_;
   vtkSmartPointer<vtkTextActor> hint_;
   std::vector<int> path_cells_;  // visibility cell of each path position (colours)
+  CameraPath drawn_path_;        // the path as drawn: unplaced pieces in the tray (widgets/map_pieces.h)
   AnchorDrag drag_;
   QTimer* render_timer_;
   QPoint press_pixel_;

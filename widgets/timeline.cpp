@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "widgets/map_pieces.h"
 #include "widgets/map_view.h"
 #include "widgets/project_document.h"
 
@@ -80,6 +81,26 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
       const double y = r.bottom() - 8 - (r.height() - 12) * c.area_mean / max_area;
       painter.setPen(QPen(colour.darker(130), 2));
       painter.drawLine(QPointF(x0, y), QPointF(x1, y));
+    }
+  }
+  // A path in pieces: each piece's span in its colour along the very bottom, a break as a red tick with the
+  // piece's number (an unplaced piece's band hatched).
+  if (p.path.piece_count() > 1 && p.path.size() == static_cast<std::size_t>(n)) {
+    for (int i = 0; i < n;) {
+      const int piece = p.path.frames[static_cast<std::size_t>(i)].piece;
+      int j = i;
+      while (j + 1 < n && p.path.frames[static_cast<std::size_t>(j + 1)].piece == piece) ++j;
+      const auto rgb = piece_colour(piece);
+      const QColor colour(rgb[0], rgb[1], rgb[2]);
+      const double x0 = x_of(i), x1 = std::max(x_of(j), x0 + 2.0);
+      const QRectF band(x0, r.bottom() - 3, x1 - x0, 3);
+      painter.fillRect(band, p.path.piece_placed(piece) ? QBrush(colour) : QBrush(colour, Qt::BDiagPattern));
+      if (i > 0) {
+        painter.setPen(QPen(QColor(200, 0, 0), 2));
+        painter.drawLine(QPointF(x0, r.top()), QPointF(x0, r.bottom()));
+        painter.drawText(QPointF(x0 + 3, r.bottom() - 6), tr("piece %1").arg(piece));
+      }
+      i = j + 1;
     }
   }
   // Frames the tracker flagged (bridged, moving objects, stopped, ...): amber marks along the top, one run
@@ -237,6 +258,11 @@ void TimelinePanel::update_controls() {
   int flagged = 0;
   for (const PathFrame& f : p.path.frames) flagged += f.flags != kFrameOk;
   if (flagged > 0) text += tr(" · %1 flagged").arg(flagged);
+  if (p.path.piece_count() > 1) {
+    int unplaced = 0;
+    for (int k = 0; k < p.path.piece_count(); ++k) unplaced += !p.path.piece_placed(k);
+    text += tr(" · %1 pieces (%2 unplaced)").arg(p.path.piece_count()).arg(unplaced);
+  }
   QString reason;
   if (position >= 0 && position < static_cast<int>(p.path.size())) {
     const PathFrame& f = p.path.frames[static_cast<std::size_t>(position)];

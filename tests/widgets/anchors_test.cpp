@@ -17,6 +17,7 @@
 
 #include "app/studio/main_window.h"
 #include "app/studio/studio_tasks.h"
+#include "model/project_io.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/visibility/visibility.h"
@@ -447,6 +448,86 @@ TEST(Anchors, CancelledRefinementChangesNothing) {
   EXPECT_EQ(failed.count(), 0) << "cancelled, not failed";
   EXPECT_EQ(doc.project().path, project.path);
   EXPECT_EQ(doc.undo_stack()->count(), 0);
+}
+
+}  // namespace
+}  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+// A path in two pieces (the tracker's result where the images do not connect): the second piece is
+// unplaced, in its own gauge (first frame at the origin, heading 0, here turned 90 deg against the plan). The
+// map draws it beside the plan, not at the origin; one Ctrl+drag of one of its frames places it there (an
+// anchor moves that piece alone), a second anchor turns it onto its true line.
+TEST(Anchors, AnUnplacedPieceIsDrawnBesideThePlanAndPlacedByItsAnchors) {
+  const auto& t = test_project("pieces");
+  Project project = t.project;
+  const CameraPath truth = project.path;  // x = 1..7 at y = 3.5
+  ASSERT_EQ(truth.size(), 30u);
+  CameraPath path = truth;
+  const PathFrame start = truth.frames[15];
+  for (std::size_t i = 15; i < path.size(); ++i) {
+    PathFrame& f = path.frames[i];
+    const Eigen::Vector2d d = truth.frames[i].position() - start.position();
+    f.x = -d.y();  // rotated by +90 deg about the piece's first frame, which sits at the origin
+    f.y = d.x();
+    f.heading = wrap_angle(truth.frames[i].heading + M_PI / 2);
+    f.piece = 1;
+  }
+  path.pieces = {
+      {truth.frames[0].index, truth.frames[14].index, true, "camera_height", 1.0, ""},
+      {truth.frames[15].index, truth.frames[29].index, false, "camera_height", 1.0, "no image connects"}};
+  project.path = path;
+  const std::string file = (t.folder + "/pieces.plenopath").toStdString();
+  save_project(project, file);
+
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(QString::fromStdString(file)));
+  widgets::MapView* map = s.window.map_view();
+  widgets::ProjectDocument& doc = s.window.document();
+  ASSERT_EQ(doc.project().path.piece_count(), 2);
+  map->render_now();
+  const double tolerance = 1.5 * metres_per_pixel(map);
+
+  // Drawn beside the plan (right of its 8 m), never at the plan's origin; piece 0 where it is.
+  const CameraPath& drawn = map->drawn_path();
+  ASSERT_EQ(drawn.size(), 30u);
+  const PlanExtents extents = doc.project().plan.extents();
+  for (std::size_t i = 15; i < 30; ++i) EXPECT_GT(drawn.frames[i].x, extents.max.x() + 0.5) << i;
+  for (std::size_t i = 0; i < 15; ++i) EXPECT_EQ(drawn.frames[i].position(), path.frames[i].position());
+  // The tray piece is drawn in its colour (palette entry 1: red).
+  const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  auto is_piece_1 = [](QRgb c) { return qRed(c) > 180 && qGreen(c) < 90 && qBlue(c) < 90; };
+  EXPECT_GT(count_near(image, map->widget_pixel_of(drawn.frames[22].position()), 4, is_piece_1), 3);
+
+  // One anchor on frame 15 at its true place: piece 1 placed, moved as a whole; piece 0 untouched.
+  drag(map, map->widget_pixel_of(drawn.frames[15].position()), map->widget_pixel_of(start.position()),
+       Qt::ControlModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 1u);
+  EXPECT_EQ(doc.project().anchors[0].frame, start.index);
+  const CameraPath& placed = doc.project().path;
+  EXPECT_TRUE(placed.piece_placed(1));
+  EXPECT_LT((placed.frames[15].position() - start.position()).norm(), tolerance);
+  for (std::size_t i = 0; i < 15; ++i) EXPECT_EQ(placed.frames[i].position(), path.frames[i].position()) << i;
+  // Still turned (one anchor without a heading cannot know better), but rigidly: frame 29 is 14 steps
+  // from frame 15, along +y.
+  const double step = (truth.frames[1].position() - truth.frames[0].position()).norm();
+  EXPECT_NEAR((placed.frames[29].position() - placed.frames[15].position()).norm(), 14 * step, 1e-6);
+
+  // A second anchor, frame 29 at its true place: the piece lies on its true line.
+  map->render_now();
+  drag(map, map->widget_pixel_of(placed.frames[29].position()),
+       map->widget_pixel_of(truth.frames[29].position()), Qt::ControlModifier);
+  ASSERT_EQ(doc.project().anchors.size(), 2u);
+  for (std::size_t i = 15; i < 30; ++i)
+    EXPECT_LT((doc.project().path.frames[i].position() - truth.frames[i].position()).norm(), 3 * tolerance)
+        << i;
+  // Undo twice: unplaced again.
+  doc.undo_stack()->undo();
+  doc.undo_stack()->undo();
+  EXPECT_FALSE(doc.project().path.piece_placed(1));
+  EXPECT_EQ(doc.project().path, path);
 }
 
 }  // namespace
