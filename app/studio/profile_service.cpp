@@ -4,8 +4,8 @@
 #include <exception>
 
 #include "app/studio/envelope_service.h"
-#include "processing/sampling/depth_volume.h"
 #include "processing/capture/frame_source.h"
+#include "processing/sampling/depth_volume.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/project_document.h"
 #include "widgets/timeline.h"
@@ -54,7 +54,9 @@ void ProfileService::recompute() {
     if (index) {
       out.envelope_area.resize(n);
       for (int i = 0; i < n && !*stop; ++i)
-        out.envelope_area[i] = index->envelope_area(path.frames[i].position());
+        // An unplaced piece has no plan position: no envelope to speak of.
+        out.envelope_area[i] =
+            path.piece_placed(path.frames[i].piece) ? index->envelope_area(path.frames[i].position()) : 0.0;
     }
     if (!capture.depth_folder.empty() && capture.kind == CaptureKind::kImageFolder) {
       try {
