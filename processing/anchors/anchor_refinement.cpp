@@ -315,6 +315,17 @@ static CameraPath refine_one_piece(const CameraPath& path, const Anchors& anchor
 
 namespace {
 
+// Writes the frames of piece k, placed on their own, back into the whole path and marks the piece placed.
+void put_piece_back(const CameraPath& placed, int k, CameraPath* out) {
+  for (const PathFrame& f : placed.frames) {
+    PathFrame& target = out->frames[position_of(*out, f.index)];
+    target.x = f.x;
+    target.y = f.y;
+    target.heading = f.heading;
+  }
+  out->pieces[static_cast<std::size_t>(k)].placed = true;
+}
+
 // Runs `place` on each piece of `path` that has anchors (a path without pieces is one piece) and writes the
 // placed frames back; a piece placed so is marked placed. Pieces without anchors stay as they are.
 template <class Place>
@@ -329,13 +340,7 @@ CameraPath place_pieces(const CameraPath& path, const Anchors& anchors, Place&& 
       if (piece.find_frame(a.frame)) own.push_back(a);
     if (own.empty()) continue;
     const CameraPath placed = place(piece, own);
-    for (const PathFrame& f : placed.frames) {
-      PathFrame& target = out.frames[position_of(out, f.index)];
-      target.x = f.x;
-      target.y = f.y;
-      target.heading = f.heading;
-    }
-    out.pieces[static_cast<std::size_t>(k)].placed = true;
+    put_piece_back(placed, k, &out);
   }
   return out;
 }
@@ -388,13 +393,7 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
       if (report) *report = total;
       return path;
     }
-    for (const PathFrame& f : placed.frames) {
-      PathFrame& target = out.frames[position_of(out, f.index)];
-      target.x = f.x;
-      target.y = f.y;
-      target.heading = f.heading;
-    }
-    out.pieces[static_cast<std::size_t>(k)].placed = true;
+    put_piece_back(placed, k, &out);
   }
   if (!any)
     throw Error(
