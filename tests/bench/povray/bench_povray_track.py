@@ -23,6 +23,7 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, HERE)
 import corpus  # noqa: E402
 
@@ -78,16 +79,17 @@ def bench_scene(scene, args):
     elif args.partial:
         # The longest rendered prefix 0..last, scored against the truth of those frames only.
         d = corpus.scene_dir(scene)
-        full = json.load(open(os.path.join(d, "truth.json"))) if os.path.exists(os.path.join(d, "truth.json")) else None
+        full = corpus.truth_for(scene)
         n = 0
-        while full and n < len(full["frames"]) and os.path.exists(os.path.join(d, full["frames"][n]["file"])):
+        while n < len(full["frames"]) and os.path.exists(os.path.join(d, full["frames"][n]["file"])):
             n += 1
-        if n < 30:
-            out["skipped"] = "only %d frames rendered (--partial needs 30)" % n
+        if n < 10:
+            out["skipped"] = "only %d frames rendered (--partial needs 10)" % n
             return out
         last = n - 1
         part = dict(full, frames=full["frames"][:n],
-                    pieces=[dict(p, last=min(p["last"], last)) for p in full["pieces"] if p["first"] <= last])
+                    true_pieces=[dict(p, last_index=min(p["last_index"], last)) for p in full["true_pieces"]
+                                 if p["first_index"] <= last])
         fr = part["frames"]
         part["length_m"] = round(sum(((a["x"] - b["x"]) ** 2 + (a["y"] - b["y"]) ** 2) ** 0.5
                                      for a, b in zip(fr, fr[1:])), 3)
@@ -111,7 +113,7 @@ def bench_scene(scene, args):
     estimate = os.path.join(res, "path.json")
     out.update({"frames": len(truth["frames"]), "length_m": truth["length_m"],
                 "render_seconds": done.get("render_seconds_total"), "cache": d,
-                "true_pieces": [[p["first"], p["last"]] for p in truth["pieces"]]})
+                "true_pieces": [[p["first_index"], p["last_index"]] for p in truth["true_pieces"]]})
     frames_dir = os.path.join(res, "frames_partial") if last is not None else os.path.join(d, "frames")
     cmd = [args.plenopath, "track", "--capture", frames_dir, "--camera-height",
            str(truth["camera_height_m"]), "--out", estimate, "--json", "--quiet"]
@@ -139,7 +141,7 @@ def bench_scene(scene, args):
         by_piece.setdefault(int(f.get("piece", 0)), []).append(f)
     truth_by_index = {f["index"]: f for f in truth["frames"]}
     out["pieces_found"] = len(by_piece)
-    out["pieces_true"] = len(truth["pieces"])
+    out["pieces_true"] = len(truth["true_pieces"])
     pieces = []
     for k in sorted(by_piece):
         frames = by_piece[k]
@@ -152,7 +154,9 @@ def bench_scene(scene, args):
         else:
             ef = os.path.join(res, "piece%d_estimate.json" % k)
             tf = os.path.join(res, "piece%d_truth.json" % k)
-            write_json(ef, dict(est, frames=frames))
+            # each piece as a one-piece path of its own
+            write_json(ef, {"units": est.get("units", "m"),
+                            "frames": [{k2: v for k2, v in f.items() if k2 != "piece"} for f in frames]})
             write_json(tf, {"units": truth["units"],
                             "frames": [truth_by_index[i] for i in idx if i in truth_by_index]})
             entry.update(eval_path(args.plenopath, ef, tf))

@@ -309,20 +309,20 @@ def truth_for(scene):
     walls, columns = plan_elements(spec["pov"])
     solids = walls + columns
     blind = [any(inside_polygon((f["x"], f["y"]), poly) for poly in solids) for f in frames]
-    pieces = []
+    pieces = []  # named like the path format's pieces, but kept apart: the truth itself is one placed path
     for i, b in enumerate(blind):
         if b:
             continue
-        if pieces and pieces[-1]["last"] == i - 1:
-            pieces[-1]["last"] = i
+        if pieces and pieces[-1]["last_index"] == i - 1:
+            pieces[-1]["last_index"] = i
         else:
-            pieces.append({"first": i, "last": i})
+            pieces.append({"first_index": i, "last_index": i})
     truth = {
         "units": "m",
         "scene": scene,
         "description": spec["description"],
         "camera_height_m": spec["camera_height"],
-        "pieces": pieces,
+        "true_pieces": pieces,
         "frames_inside_walls": [i for i, b in enumerate(blind) if b],
         "frames": [],
     }
@@ -437,16 +437,17 @@ def ensure(scene, quiet=False):
     """Renders whatever is missing of SCENE into its cache folder; returns the folder."""
     spec = SCENES[scene]
     d = scene_dir(scene)
-    if is_complete(scene):
-        remove_strays(d)
-        return d
     os.makedirs(os.path.join(d, "frames"), exist_ok=True)
+    # truth and plan are cheap and deterministic: always written, so that they follow this script
     truth = truth_for(scene)
     tmp = os.path.join(d, "truth.json.%d.tmp" % os.getpid())
     with open(tmp, "w") as fh:
         json.dump(truth, fh, indent=1)
     os.replace(tmp, os.path.join(d, "truth.json"))
     write_dxf(scene, os.path.join(d, "plan.dxf"))
+    if is_complete(scene):
+        remove_strays(d)
+        return d
     frames = truth["frames"]
     missing = [f for f in frames if not os.path.exists(os.path.join(d, f["file"]))]
     if missing:
@@ -513,7 +514,7 @@ def main(argv):
         for s in SCENES:
             t = truth_for(s)
             print("%-9s %4d frames %6.1f m  pieces %s  %s  %s" % (
-                s, len(t["frames"]), t["length_m"], [(p["first"], p["last"]) for p in t["pieces"]],
+                s, len(t["frames"]), t["length_m"], [(p["first_index"], p["last_index"]) for p in t["true_pieces"]],
                 "cached" if is_complete(s) else "not rendered", scene_dir(s)))
         return 0
     if cmd == "render":
