@@ -1,8 +1,8 @@
 #pragma once
 // The per-frame curves of the timeline: the envelope area at each path position (from the visibility index
-// of the current plan) and the depth volume of each frame's depth map (processing/sampling/depth_volume.h). Computed
-// off the GUI thread whenever the path, the plan's index or the capture changes; a newer request makes an
-// older run stop early and its result is dropped.
+// of the current plan) and the depth volume of each frame's depth map (processing/sampling/depth_volume.h).
+// Computed off the GUI thread whenever the path, the plan's index or the capture changes; a newer request
+// makes an older run stop early and its result is dropped.
 #include <QFutureWatcher>
 #include <QObject>
 #include <QVector>

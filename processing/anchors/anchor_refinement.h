@@ -14,8 +14,8 @@
 #include "model/anchors.h"
 #include "model/camera_path.h"
 #include "model/project.h"
-#include "processing/egomotion/path_evaluation.h"
 #include "processing/capture/gps_track.h"
+#include "processing/egomotion/path_evaluation.h"
 
 namespace plenopath {
 
@@ -61,9 +61,9 @@ struct AnchorRefinementReport {
 using AnchorRefinementProgress = std::function<bool(int iteration)>;
 
 // Needs at least one anchor (two or more to fix rotation and scale), or GPS priors on at least two frames.
-// GPS priors (processing/capture/gps_track.h) are weak position priors with a robust loss, so a few bad fixes do
-// not drag the path. Frames keep their flags. Throws Error on unusable input (empty path, anchors off
-// the path).
+// GPS priors (processing/capture/gps_track.h) are weak position priors with a robust loss, so a few bad fixes
+// do not drag the path. Frames keep their flags. Throws Error on unusable input (empty path, anchors off the
+// path).
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options = {},
                                     AnchorRefinementReport* report = nullptr,

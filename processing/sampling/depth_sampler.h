@@ -1,18 +1,18 @@
 #pragma once
 // Keyframes without a floor plan, from depth panoramas (the seed's fallback for complex scenes): cells
-// begin where the depth-based volume changes significantly (processing/sampling/depth_volume.h), each cell's size is
-// its mean star volume V (m^3), and the cells get keyframes by the same l^e / v rule (cell_rule.h; with
-// V in m^3, the seed's exponent 3 makes l^3 / V dimensionless). Like the visibility sampler, the keyframes
-// are then moved by the loss they cause (loss_refinement.h), with each frame's envelope read from its own
-// depth map: the ranges along the horizon row, around the frame's pose. No plan is needed.
+// begin where the depth-based volume changes significantly (processing/sampling/depth_volume.h), each cell's
+// size is its mean star volume V (m^3), and the cells get keyframes by the same l^e / v rule (cell_rule.h;
+// with V in m^3, the seed's exponent 3 makes l^3 / V dimensionless). Like the visibility sampler, the
+// keyframes are then moved by the loss they cause (loss_refinement.h), with each frame's envelope read from
+// its own depth map: the ranges along the horizon row, around the frame's pose. No plan is needed.
 #include <functional>
 #include <opencv2/core.hpp>
 #include <vector>
 
 #include "model/camera_path.h"
 #include "model/keyframes.h"
-#include "processing/sampling/depth_volume.h"
 #include "processing/sampling/cell_rule.h"
+#include "processing/sampling/depth_volume.h"
 #include "processing/sampling/sampling_loss.h"
 
 namespace plenopath {

@@ -9,8 +9,8 @@
 #include "model/camera_path.h"
 #include "model/keyframes.h"
 #include "model/visibility_cells.h"
-#include "processing/sampling/depth_volume.h"
 #include "processing/sampling/depth_sampler.h"
+#include "processing/sampling/depth_volume.h"
 #include "processing/sampling/visibility_sampler.h"
 
 namespace plenopath {

@@ -1,6 +1,6 @@
-// The CGAL half of processing/visibility/visibility.h: the exact arrangement of the walls, face classification, the
-// envelope queries and the per-vertex visibility polygons. Everything else (radial functions, events,
-// cells) is plain double code in visibility.cpp.
+// The CGAL half of processing/visibility/visibility.h: the exact arrangement of the walls, face
+// classification, the envelope queries and the per-vertex visibility polygons. Everything else (radial
+// functions, events, cells) is plain double code in visibility.cpp.
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_landmarks_point_location.h>
 #include <CGAL/Arr_segment_traits_2.h>

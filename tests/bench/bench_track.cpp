@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
+#include "processing/capture/frame_source.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/path_evaluation.h"
-#include "processing/capture/frame_source.h"
 #include "rig/synthetic_camera.h"
 
 using namespace plenopath;

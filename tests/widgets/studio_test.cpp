@@ -130,8 +130,8 @@ TEST(Studio, TimelineProfileHoldsTheEnvelopeAreaAlongThePath) {
            s.window.profiles()->profiles().envelope_area.size() == 30;
   }));
   const QVector<double>& area = s.window.profiles()->profiles().envelope_area;
-  // Tolerance: visibility thickens the dangling half wall to 1 cm (processing/visibility/visibility.h), which takes
-  // 2.5 m x 1 cm = 0.025 m^2 off the free space.
+  // Tolerance: visibility thickens the dangling half wall to 1 cm (processing/visibility/visibility.h), which
+  // takes 2.5 m x 1 cm = 0.025 m^2 off the free space.
   EXPECT_NEAR(area.front(), 40.0 - 22.0 / 3.0, 0.04);
   EXPECT_NEAR(area.back(), 40.0 - 22.0 / 3.0, 0.04);
   for (double a : area) {

@@ -15,10 +15,10 @@
 
 #include "model/error.h"
 #include "model/json_reader.h"
-#include "processing/export/tour_interop.h"
-#include "processing/export/zip_writer.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/video_encode.h"
+#include "processing/export/tour_interop.h"
+#include "processing/export/zip_writer.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
