@@ -9,20 +9,23 @@
 #include <queue>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "rig/scene_textures.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
 
-std::string AutoWalkOptions::check() const {
-  if (!(step > 0.0) || step > 10.0) return "step must be in (0, 10] m";
-  if (!(step_wobble >= 0.0) || step_wobble >= 1.0) return "step_wobble must be in [0, 1)";
-  if (!(heading_wobble_deg >= 0.0) || heading_wobble_deg > 45.0)
-    return "heading_wobble_deg must be in [0, 45]";
-  if (!(clearance > 0.0) || clearance > 5.0) return "clearance must be in (0, 5] m";
-  if (!(room_spacing > 0.2)) return "room_spacing must be > 0.2 m";
-  if (max_frames < 0) return "max_frames must be >= 0";
-  return scene.check();
+void AutoWalkOptions::check() const {
+  const std::string s = "AutoWalkOptions.";
+  require_option(step > 0.0 && step <= 10.0, s + "step", "must be in (0, 10] m", step);
+  require_option(step_wobble >= 0.0 && step_wobble < 1.0, s + "step_wobble", "must be in [0, 1)",
+                 step_wobble);
+  require_option(heading_wobble_deg >= 0.0 && heading_wobble_deg <= 45.0, s + "heading_wobble_deg",
+                 "must be in [0, 45]", heading_wobble_deg);
+  require_option(clearance > 0.0 && clearance <= 5.0, s + "clearance", "must be in (0, 5] m", clearance);
+  require_option(room_spacing > 0.2, s + "room_spacing", "must be > 0.2 m", room_spacing);
+  require_option(max_frames >= 0, s + "max_frames", "must be >= 0", max_frames);
+  scene.check();
 }
 
 namespace {
@@ -47,7 +50,7 @@ struct Wobble {
 }  // namespace
 
 CameraPath auto_walk(const FloorPlan& plan, const AutoWalkOptions& options) {
-  if (const std::string e = options.check(); !e.empty()) throw Error("auto walk options: " + e);
+  options.check();
   const SyntheticScene scene = build_synthetic_scene(plan, options.scene);
   const Eigen::Vector2d origin = scene.floor_min;
   const int cols = static_cast<int>(std::ceil((scene.floor_max.x() - origin.x()) / kCell)) + 1;

@@ -6,6 +6,7 @@
 
 #include "model/atomic_file.h"
 #include "model/error.h"
+#include "model/option_check.h"
 #include "rig/spherical.h"
 #include "rig/synthetic_camera.h"
 
@@ -48,21 +49,20 @@ bool PinholeHead::project(const Eigen::Vector3d& rig_direction, Eigen::Vector2d*
   return true;
 }
 
-std::string MultiHeadRig::check() const {
-  if (heads.empty()) return "the rig has no heads";
+void MultiHeadRig::check() const {
+  if (heads.empty()) throw Error("the rig has no heads");
   std::set<std::string> names;
   for (std::size_t i = 0; i < heads.size(); ++i) {
     const PinholeHead& h = heads[i];
     const std::string who = "head " + std::to_string(i) + " ('" + h.name + "')";
-    if (h.name.empty()) return "head " + std::to_string(i) + " has no name";
-    if (!names.insert(h.name).second) return "two heads are named '" + h.name + "'";
+    if (h.name.empty()) throw Error("head " + std::to_string(i) + " has no name");
+    if (!names.insert(h.name).second) throw Error("two heads are named '" + h.name + "'");
     if (h.width < 2 || h.height < 2 || h.width > 20000 || h.height > 20000)
-      return who + ": size must be 2..20000 pixels";
-    if (!(h.fx > 0) || !(h.fy > 0)) return who + ": fx and fy must be > 0";
-    if (!std::isfinite(h.cx) || !std::isfinite(h.cy)) return who + ": cx and cy must be finite";
-    if (!h.offset.allFinite() || h.offset.norm() > 1.0) return who + ": offset must be under 1 m";
+      throw Error(who + ": size must be 2..20000 pixels");
+    if (!(h.fx > 0) || !(h.fy > 0)) throw Error(who + ": fx and fy must be > 0");
+    if (!std::isfinite(h.cx) || !std::isfinite(h.cy)) throw Error(who + ": cx and cy must be finite");
+    if (!h.offset.allFinite() || h.offset.norm() > 1.0) throw Error(who + ": offset must be under 1 m");
   }
-  return {};
 }
 
 MultiHeadRig make_default_rig(const DefaultRigOptions& o) {
@@ -131,7 +131,11 @@ MultiHeadRig rig_from_json(const JsonReader& r) {
     }
     rig.heads.push_back(head);
   }
-  if (const std::string e = rig.check(); !e.empty()) throw file_error(r.file(), e);
+  try {
+    rig.check();
+  } catch (const Error& e) {
+    throw file_error(r.file(), e.what());
+  }
   return rig;
 }
 
@@ -141,14 +145,18 @@ MultiHeadRig read_rig_file(const std::string& file) {
 }
 
 void write_rig_file(const MultiHeadRig& rig, const std::string& file) {
-  if (const std::string e = rig.check(); !e.empty()) throw file_error(file, e);
+  try {
+    rig.check();
+  } catch (const Error& e) {
+    throw file_error(file, e.what());
+  }
   write_file_atomically(
       file, rig_to_json(rig).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", false);
 }
 
 std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRig& rig, const PathFrame& pose,
                                   const RenderOptions& options, std::vector<cv::Mat>* depths) {
-  if (const std::string e = rig.check(); !e.empty()) throw Error("rig: " + e);
+  rig.check();
   const Eigen::Matrix3d world_from_rig = world_from_camera_rotation(pose.heading);
   const Eigen::Vector3d nodal(pose.x, pose.y, scene.options.camera_height);
   std::vector<cv::Mat> images;
@@ -170,11 +178,11 @@ std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRi
   return images;
 }
 
-std::string StitchOptions::check() const {
-  if (width < 8 || height < 4) return "stitch size must be at least 8x4";
-  if (!(feather > 0.0) || feather > 1.0) return "feather must be in (0, 1]";
-  if (!(stitch_distance >= 0.0)) return "stitch_distance must be >= 0";
-  return {};
+void StitchOptions::check() const {
+  require_option(width >= 8, "StitchOptions.width", "must be >= 8", width);
+  require_option(height >= 4, "StitchOptions.height", "must be >= 4", height);
+  require_option(feather > 0.0 && feather <= 1.0, "StitchOptions.feather", "must be in (0, 1]", feather);
+  require_option(stitch_distance >= 0.0, "StitchOptions.stitch_distance", "must be >= 0", stitch_distance);
 }
 
 namespace {
@@ -196,8 +204,8 @@ double feather_weight(const PinholeHead& head, const Eigen::Vector2d& p, double 
 }  // namespace
 
 StitchMaps make_stitch_maps(const MultiHeadRig& rig, const StitchOptions& options) {
-  if (const std::string e = rig.check(); !e.empty()) throw Error("rig: " + e);
-  if (const std::string e = options.check(); !e.empty()) throw Error("stitch options: " + e);
+  rig.check();
+  options.check();
   StitchMaps m;
   m.width = options.width;
   m.height = options.height;

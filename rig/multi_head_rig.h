@@ -44,7 +44,7 @@ struct PinholeHead {
 
 struct MultiHeadRig {
   std::vector<PinholeHead> heads;
-  std::string check() const;  // empty when sane, otherwise what is wrong
+  void check() const;  // throws Error saying what is wrong ("head 2 ('left'): fx and fy must be > 0")
 };
 
 struct DefaultRigOptions {
@@ -75,7 +75,7 @@ struct StitchOptions {
   int width = 2048, height = 1024;
   double feather = 0.15;  // fraction of the head's half-size over which its weight ramps up from the border
   double stitch_distance = 0.0;  // metres at which head offsets are compensated (0 = infinitely far)
-  std::string check() const;
+  void check() const;            // throws Error naming the bad field
 };
 // Precomputed remap tables: build once per rig and size, stitch many frames.
 struct StitchMaps {

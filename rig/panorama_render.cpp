@@ -6,6 +6,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "rig/render_internal.h"
 #include "rig/scene_textures.h"
 
@@ -33,28 +34,35 @@ FrameContext make_context(const SyntheticScene& scene, const RenderOptions& o, c
 
 }  // namespace render_detail
 
-std::string RenderOptions::check() const {
-  if (width < 8 || height < 4 || width > 32768 || height > 16384)
-    return "size must be between 8x4 and 32768x16384";
-  if (threads < 0) return "threads must be >= 0";
-  if (!(noise_sigma >= 0.0) || noise_sigma > 100.0) return "noise_sigma must be in [0, 100]";
-  if (!(exposure_drift >= 0.0) || exposure_drift >= 1.0) return "exposure_drift must be in [0, 1)";
-  if (!(exposure_period_frames > 0.0)) return "exposure_period_frames must be > 0";
-  if (people < 0 || people > 1000) return "people must be in [0, 1000]";
-  if (!(frame_rate > 0.0)) return "frame_rate must be > 0";
-  if (jpeg_quality < 1 || jpeg_quality > 100) return "jpeg_quality must be in [1, 100]";
-  if (!(exposure_jump >= 0.0) || exposure_jump > 2.0) return "exposure_jump must be in [0, 2]";
-  if (!(exposure_jump_frames >= 1.0)) return "exposure_jump_frames must be >= 1";
-  if (!(tilt_wobble_deg >= 0.0) || tilt_wobble_deg > 20.0) return "tilt_wobble_deg must be in [0, 20]";
-  if (!(tilt_wobble_frames >= 1.0)) return "tilt_wobble_frames must be >= 1";
-  if (!(bump_deg >= 0.0) || bump_deg > 20.0) return "bump_deg must be in [0, 20]";
-  if (!(bumps_per_100_frames >= 0.0) || bumps_per_100_frames > 100.0)
-    return "bumps_per_100_frames must be in [0, 100]";
-  if (!(std::abs(pitch_deg) <= 45.0)) return "pitch_deg must be in [-45, 45]";
-  if (!(std::abs(roll_deg) <= 45.0)) return "roll_deg must be in [-45, 45]";
-  if (!(operator_distance_m >= 0.4 && operator_distance_m <= 3.0))
-    return "operator_distance_m must be in [0.4, 3] m";
-  return {};
+void RenderOptions::check() const {
+  const std::string s = "RenderOptions.";
+  require_option(width >= 8 && width <= 32768, s + "width", "must be in [8, 32768]", width);
+  require_option(height >= 4 && height <= 16384, s + "height", "must be in [4, 16384]", height);
+  require_option(threads >= 0, s + "threads", "must be >= 0", threads);
+  require_option(noise_sigma >= 0.0 && noise_sigma <= 100.0, s + "noise_sigma", "must be in [0, 100]",
+                 noise_sigma);
+  require_option(exposure_drift >= 0.0 && exposure_drift < 1.0, s + "exposure_drift", "must be in [0, 1)",
+                 exposure_drift);
+  require_option(exposure_period_frames > 0.0, s + "exposure_period_frames", "must be > 0",
+                 exposure_period_frames);
+  require_option(people >= 0 && people <= 1000, s + "people", "must be in [0, 1000]", people);
+  require_option(frame_rate > 0.0, s + "frame_rate", "must be > 0", frame_rate);
+  require_option(jpeg_quality >= 1 && jpeg_quality <= 100, s + "jpeg_quality", "must be in [1, 100]",
+                 jpeg_quality);
+  require_option(exposure_jump >= 0.0 && exposure_jump <= 2.0, s + "exposure_jump", "must be in [0, 2]",
+                 exposure_jump);
+  require_option(exposure_jump_frames >= 1.0, s + "exposure_jump_frames", "must be >= 1",
+                 exposure_jump_frames);
+  require_option(tilt_wobble_deg >= 0.0 && tilt_wobble_deg <= 20.0, s + "tilt_wobble_deg",
+                 "must be in [0, 20]", tilt_wobble_deg);
+  require_option(tilt_wobble_frames >= 1.0, s + "tilt_wobble_frames", "must be >= 1", tilt_wobble_frames);
+  require_option(bump_deg >= 0.0 && bump_deg <= 20.0, s + "bump_deg", "must be in [0, 20]", bump_deg);
+  require_option(bumps_per_100_frames >= 0.0 && bumps_per_100_frames <= 100.0, s + "bumps_per_100_frames",
+                 "must be in [0, 100]", bumps_per_100_frames);
+  require_option(std::abs(pitch_deg) <= 45.0, s + "pitch_deg", "must be in [-45, 45]", pitch_deg);
+  require_option(std::abs(roll_deg) <= 45.0, s + "roll_deg", "must be in [-45, 45]", roll_deg);
+  require_option(operator_distance_m >= 0.4 && operator_distance_m <= 3.0, s + "operator_distance_m",
+                 "must be in [0.4, 3] m", operator_distance_m);
 }
 
 // ---- rendering
@@ -67,7 +75,7 @@ RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& p
 
 void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const RenderOptions& options,
                      RenderedPanorama& out) {
-  if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
+  options.check();
   if (!scene.textures) throw Error("render_panorama: the scene was not built with build_synthetic_scene");
   const int w = options.width, h = options.height;
   const double cam_h = scene.options.camera_height;
@@ -233,7 +241,7 @@ RenderedPanorama render_directions(const SyntheticScene& scene, const Eigen::Vec
                                    const RenderOptions& options, int frame_index) {
   if (!scene.textures) throw Error("render_directions: the scene was not built with build_synthetic_scene");
   if (directions.type() != CV_64FC3) throw Error("render_directions: directions must be CV_64FC3");
-  if (const std::string e = options.check(); !e.empty()) throw Error("render options: " + e);
+  options.check();
   const FrameContext ctx = make_context(scene, options, origin, frame_index);
   RenderedPanorama out;
   out.rgb.create(directions.size(), CV_8UC3);

@@ -63,8 +63,7 @@ struct SceneOptions {
   WallFinish wall_finish = WallFinish::kTextured;
   bool posters = true;  // framed posters on some of the longer walls
 
-  // Empty when the options make sense; otherwise says what is wrong.
-  std::string check() const;
+  void check() const;  // throws Error naming the bad field
 };
 
 // The kind of surface a ray hit (also used for shading and by tests).
@@ -167,7 +166,7 @@ struct RenderOptions {
   bool operator_person = false;
   double operator_distance_m = 0.7;
 
-  std::string check() const;
+  void check() const;  // throws Error naming the bad field
 };
 
 // The camera's tilt at a frame (RenderOptions' wobble, bumps and constant pitch/roll), radians.
@@ -239,7 +238,7 @@ struct AutoWalkOptions {
   std::string frame_pattern = "frames/%06d.jpg";  // PathFrame::file of each frame (empty = none)
   SceneOptions scene;  // which layers block the trolley (walls, pillars, furniture)
 
-  std::string check() const;
+  void check() const;  // throws Error naming the bad field
 };
 // A smooth walk visiting every reachable room of the plan through its doorways. Throws Error when the plan
 // has no free space big enough for the trolley.

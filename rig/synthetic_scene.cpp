@@ -7,6 +7,7 @@
 #include <set>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "rig/render_internal.h"
 #include "rig/scene_textures.h"
 
@@ -107,25 +108,26 @@ std::shared_ptr<const SceneGrid> build_grid(const SyntheticScene& scene) {
 }  // namespace
 
 // ---- options
-std::string SceneOptions::check() const {
-  if (!(wall_height > 0.0) || wall_height > 100.0) return "wall_height must be in (0, 100] m";
-  if (!(camera_height > 0.0) || camera_height >= wall_height)
-    return "camera_height must be in (0, wall_height)";
-  if (!(furniture_height > 0.0) || furniture_height > wall_height)
-    return "furniture_height must be in (0, wall_height]";
+void SceneOptions::check() const {
+  const std::string s = "SceneOptions.";
+  require_option(wall_height > 0.0 && wall_height <= 100.0, s + "wall_height", "must be in (0, 100] m",
+                 wall_height);
+  require_option(camera_height > 0.0 && camera_height < wall_height, s + "camera_height",
+                 "must be in (0, wall_height)", camera_height);
+  require_option(furniture_height > 0.0 && furniture_height <= wall_height, s + "furniture_height",
+                 "must be in (0, wall_height]", furniture_height);
   for (const auto& [layer, h] : furniture_layer_heights)
-    if (!(h > 0.0) || h > wall_height)
-      return "furniture height of layer '" + layer + "' must be in (0, wall_height]";
-  if (!(floor_margin >= 0.0)) return "floor_margin must be >= 0";
-  if (texture_size < 16 || texture_size > 8192 || (texture_size & (texture_size - 1)) != 0)
-    return "texture_size must be a power of two in [16, 8192]";
-  if (!(texels_per_metre > 0.0)) return "texels_per_metre must be > 0";
-  return {};
+    require_option(h > 0.0 && h <= wall_height, s + "furniture_layer_heights['" + layer + "']",
+                   "must be in (0, wall_height]", h);
+  require_option(floor_margin >= 0.0, s + "floor_margin", "must be >= 0", floor_margin);
+  require_option(texture_size >= 16 && texture_size <= 8192 && (texture_size & (texture_size - 1)) == 0,
+                 s + "texture_size", "must be a power of two in [16, 8192]", texture_size);
+  require_option(texels_per_metre > 0.0, s + "texels_per_metre", "must be > 0", texels_per_metre);
 }
 
 // ---- scene
 SyntheticScene build_synthetic_scene(const FloorPlan& plan, const SceneOptions& options) {
-  if (const std::string e = options.check(); !e.empty()) throw Error("synthetic scene options: " + e);
+  options.check();
   SyntheticScene scene;
   scene.options = options;
   const std::uint64_t seed = options.texture_seed;

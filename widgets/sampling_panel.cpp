@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -30,7 +31,6 @@ namespace {
 constexpr double kMinRatio = 2.0;
 constexpr double kMaxRatio = 500.0;
 constexpr int kSliderSteps = 200;
-struct Cancelled {};
 }  // namespace
 
 // One request for the worker: a snapshot of the project and what to do with it.
@@ -55,6 +55,29 @@ struct SamplingPanel::Worker {
   // The loss last measured, and for which keyframes.
   std::optional<SamplingOutcome> measured;
 };
+
+namespace {
+// The running job's Progress: reports land in the worker's permille and stage, `cancel` stops it.
+class WorkerProgress final : public Progress {
+ public:
+  WorkerProgress(std::atomic<int>& permille, std::mutex& stage_mutex, std::string& stage,
+                 const std::atomic<bool>& cancel)
+      : permille_(permille), stage_mutex_(stage_mutex), stage_(stage), cancel_(cancel) {}
+  void report(double fraction, const std::string& stage) override {
+    permille_ = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 1000);
+    if (stage.empty()) return;
+    std::lock_guard<std::mutex> lock(stage_mutex_);
+    stage_ = stage;
+  }
+  bool is_cancelled() const override { return cancel_; }
+
+ private:
+  std::atomic<int>& permille_;
+  std::mutex& stage_mutex_;
+  std::string& stage_;
+  const std::atomic<bool>& cancel_;
+};
+}  // namespace
 
 double SamplingPanel::ratio_of_slider(int value) {
   return kMinRatio * std::pow(kMaxRatio / kMinRatio, value / static_cast<double>(kSliderSteps));
@@ -286,12 +309,8 @@ void SamplingPanel::launch(Job job_in) {
     bool ok = false, cancelled = false;
     QString error;
     try {
-      job->outcome = w->session.run(job->snapshot, job->request, [w](double f, const std::string& stage) {
-        if (w->cancel) throw Cancelled{};
-        w->permille = static_cast<int>(f * 1000);
-        std::lock_guard<std::mutex> lock(w->stage_mutex);
-        w->stage = stage;
-      });
+      WorkerProgress progress(w->permille, w->stage_mutex, w->stage, w->cancel);
+      job->outcome = w->session.run(job->snapshot, job->request, progress);
       ok = true;
     } catch (const Cancelled&) {
       cancelled = true;

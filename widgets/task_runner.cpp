@@ -6,6 +6,7 @@
 #include <QUndoStack>
 #include <QtConcurrent>
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <utility>
 
@@ -15,16 +16,14 @@
 
 namespace plenopath::widgets {
 
-void TaskProgress::report(double fraction, const std::string& message) {
-  permille_ = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 1000.0 + 0.5);
-  if (!message.empty()) {
+void TaskProgress::report(double fraction, const std::string& stage) {
+  const double f = std::isfinite(fraction) ? std::clamp(fraction, 0.0, 1.0) : 0.0;
+  permille_ = static_cast<int>(f * 1000.0 + 0.5);
+  if (!stage.empty()) {
     std::lock_guard<std::mutex> lock(message_mutex_);
-    message_ = message;
+    message_ = stage;
   }
-}
-
-void TaskProgress::throw_if_cancelled() const {
-  if (cancelled()) throw TaskCancelled{};
+  if (hook) hook(f, stage);
 }
 
 std::string TaskProgress::message() const {
@@ -53,7 +52,7 @@ TaskRunner::TaskRunner(ProjectDocument& document, QObject* parent)
 
 TaskRunner::~TaskRunner() {
   if (run_) {
-    run_->progress.request_cancel();
+    run_->progress.cancel();
     run_->watcher.waitForFinished();
   }
 }
@@ -62,6 +61,7 @@ bool TaskRunner::start(const QString& title, TaskFunction task) {
   if (running_) return false;
   run_ = std::make_shared<Run>();
   run_->title = title;
+  run_->progress.hook = report_hook_;
   running_ = true;
   std::shared_ptr<Run> run = run_;
   Project snapshot = document_.snapshot();
@@ -71,9 +71,10 @@ bool TaskRunner::start(const QString& title, TaskFunction task) {
         // Top-level catch: nothing a task throws may escape the worker.
         try {
           run->result = task(std::move(snapshot), run->progress);
-          run->ok = !run->progress.cancelled();
-          run->cancelled = run->progress.cancelled();
-        } catch (const TaskCancelled&) {
+          // Cancelled too late to stop it: dropped all the same, as the author asked.
+          run->cancelled = run->progress.is_cancelled();
+          run->ok = !run->cancelled;
+        } catch (const Cancelled&) {
           run->cancelled = true;
         } catch (const std::exception& e) {
           run->error = QString::fromStdString(e.what());
@@ -87,7 +88,11 @@ bool TaskRunner::start(const QString& title, TaskFunction task) {
 }
 
 void TaskRunner::cancel() {
-  if (run_) run_->progress.request_cancel();
+  if (run_) run_->progress.cancel();
+}
+
+void TaskRunner::set_report_hook(std::function<void(double fraction, const std::string& stage)> hook) {
+  report_hook_ = std::move(hook);
 }
 
 void TaskRunner::wait() {
@@ -102,13 +107,20 @@ void TaskRunner::on_worker_done() {
   std::shared_ptr<Run> run = std::move(run_);
   running_ = false;
   if (!run) return;
-  if (run->ok && run->result.changed != 0) {
-    document_.undo_stack()->push(
-        new ReplacePartsCommand(document_, run->title, run->result.project, run->result.changed));
-    emit finished(true);
-    return;
+  if (run->ok) {
+    // The last word of the task ("exported 12 keyframes"), which the poll may have missed.
+    emit progress(1.0, QString::fromStdString(run->progress.message()));
+    if (run->result.changed != 0) {
+      document_.undo_stack()->push(
+          new ReplacePartsCommand(document_, run->title, run->result.project, run->result.changed));
+      emit finished(true);
+      return;
+    }
+  } else if (run->cancelled) {
+    emit cancelled(run->title);
+  } else if (!run->error.isEmpty()) {
+    emit failed(run->title, run->error);
   }
-  if (!run->error.isEmpty()) emit failed(run->title, run->error);
   emit finished(false);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Every `plenopath` subcommand registers itself with add_*_command() and returns what main() runs when
 // that subcommand was chosen. Conventions: long options, --json for machine-readable output, exit codes
-// 0 ok / 1 failed / 2 bad usage, errors on stderr naming the file.
+// 0 ok / 1 failed / 2 bad usage / 130 cancelled by Ctrl+C, errors on stderr naming the file. Long steps
+// report to a ConsoleProgress (console_progress.h), which Ctrl+C cancels.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <vector>
@@ -11,6 +12,7 @@ namespace plenopath::cli {
 constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitCancelled = 130;  // 128 + SIGINT, as shells report a program ended by Ctrl+C
 
 struct Command {
   CLI::App* app = nullptr;

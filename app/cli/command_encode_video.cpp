@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/video_encode.h"
 
@@ -44,7 +45,9 @@ Command add_encode_video_command(CLI::App& parent) {
             options.folder_frame_rate = o->rate;
             options.require_2to1 = !o->any_aspect;
             const std::unique_ptr<FrameSource> source = FrameSource::open(o->source, options);
-            const VideoEncodeResult r = encode_video(*source, o->out, o->encode);
+            ConsoleProgress progress("encode-video");
+            const VideoEncodeResult r = encode_video(*source, o->out, o->encode, progress);
+            progress.finish();
             const nlohmann::json summary = {{"out", o->out},
                                             {"codec", o->encode.codec},
                                             {"fourcc", r.fourcc},

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/project_io.h"
 #include "processing/export/tour_export.h"
 
@@ -38,16 +39,9 @@ Command add_export_command(CLI::App& parent) {
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
-            int last_percent = -1;
-            const TourExportReport report =
-                export_tour(project, options, [&](double f, const std::string& stage) {
-                  const int percent = static_cast<int>(f * 100);
-                  if (percent != last_percent)
-                    std::cerr << "\rexport: " << percent << "% " << stage << "        ";
-                  last_percent = percent;
-                  return true;
-                });
-            std::cerr << "\n";
+            ConsoleProgress progress("export");
+            const TourExportReport report = export_tour(project, options, progress);
+            progress.finish();
             for (const std::string& w : report.warnings) std::cerr << "export: warning: " << w << "\n";
             if (o->json) {
               std::cout << nlohmann::json{{"output", report.output},

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/anchors_io.h"
 #include "model/error.h"
 #include "model/project_io.h"
@@ -45,14 +46,10 @@ Command add_refine_command(CLI::App& parent) {
             if (o->preview) {
               project.path = preview_path_with_anchors(project.path, project.anchors);
             } else {
-              project.path = refine_path_with_anchors(
-                  project.path, project.anchors, {}, &report,
-                  [](int iteration) {
-                    std::cerr << "\rrefine: iteration " << iteration << "   ";
-                    return true;
-                  },
-                  gps);
-              std::cerr << "\n";
+              ConsoleProgress progress("refine");
+              project.path =
+                  refine_path_with_anchors(project.path, project.anchors, {}, &report, progress, gps);
+              progress.finish();
             }
             project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
             const std::string out = o->out.empty() ? o->project : o->out;

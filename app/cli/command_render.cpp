@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "app/cli/render_common.h"
 #include "model/error.h"
 #include "model/path_io.h"
@@ -62,7 +63,7 @@ int run(const Options& o) {
   render_options.bump_deg = o.bumps;
   render_options.trolley = o.trolley;
   render_options.operator_person = o.operator_person;
-  if (const std::string e = render_options.check(); !e.empty()) throw Error(e);
+  render_options.check();
   if (o.frames < 0) throw Error("--frames must be >= 0");
 
   const FloorPlan plan = load_render_plan(o.plan);
@@ -95,7 +96,7 @@ int run(const Options& o) {
     write_rig_file(*rig, (fs::path(o.out) / "rig.json").string());
   }
 
-  Progress progress("render", static_cast<int>(path.size()), o.quiet);
+  ConsoleProgress progress("render", o.quiet);
   RenderedPanorama pano;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const PathFrame& pose = path.frames[i];
@@ -110,7 +111,7 @@ int run(const Options& o) {
       if (o.depth)
         write_depth_png((fs::path(o.out) / "depth" / frame_name(pose.index, "png")).string(), pano.depth);
     }
-    progress.step(static_cast<int>(i + 1));
+    progress.frames(static_cast<int>(i + 1), static_cast<int>(path.size()));
   }
   progress.finish();
   if (!o.quiet)

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
@@ -100,14 +101,17 @@ int run(const Options& o, CLI::App* sub) {
                   " is not in the capture (" + std::to_string(source->frame_count()) + " frames)");
   };
 
+  ConsoleProgress progress("sample");
   SamplingInputs inputs;
   inputs.path = &path;
   inputs.index = index.get();
   inputs.visibility.rule = visibility_rule_from_string(o.rule);
   VisibilityCells cells;
   if (o.parameters.method == "visibility" && inputs.visibility.rule == VisibilityRule::cell_rule) {
-    cells = from_project && !project.visibility.empty() && o.plan.empty() ? project.visibility
-                                                                          : index->cells_along_path(path);
+    SubProgress cells_progress(progress, 0.0, 0.3, "visibility cells");
+    cells = from_project && !project.visibility.empty() && o.plan.empty()
+                ? project.visibility
+                : index->cells_along_path(path, cells_progress);
     inputs.cells = &cells;
   }
   std::vector<DepthVolume> volumes;
@@ -116,6 +120,7 @@ int run(const Options& o, CLI::App* sub) {
     if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
     if (source->depth_match_count() == 0)
       throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
+    SubProgress volumes_progress(progress, 0.0, 0.3, "depth volumes");
     volumes = depth_volumes_along_path(
         path,
         [&](int i) {
@@ -124,16 +129,19 @@ int run(const Options& o, CLI::App* sub) {
             throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
           return source->read_depth(i);
         },
-        {}, {}, &depth_envelopes);
+        {}, volumes_progress, &depth_envelopes);
     inputs.depth_volumes = &volumes;
     inputs.depth_envelopes = &depth_envelopes;
   }
   PathEnvelopes envelopes;
   if (index) {
-    envelopes = compute_path_envelopes(*index, path);
+    SubProgress envelopes_progress(progress, 0.3, 0.6, "envelopes");
+    envelopes = compute_path_envelopes(*index, path, 0, envelopes_progress);
     inputs.envelopes = &envelopes;
   }
 
+  SubProgress sampling_progress(progress, 0.6, 0.9, "placing keyframes");
+  inputs.progress = &sampling_progress;
   const Keyframes keyframes = sample_keyframes(inputs, o.parameters, o.pinned);
 
   SamplingLoss loss;
@@ -142,6 +150,7 @@ int run(const Options& o, CLI::App* sub) {
   loss.total = stats.total;
   loss.reduction_ratio = stats.ratio;
   loss.largest_gap_m = stats.max_gap_m;
+  progress.checkpoint(0.9, "loss");
   if (index) {
     loss.geometric = geometric_loss(path, keyframes, envelopes);
     loss.has_geometric = true;
@@ -160,6 +169,8 @@ int run(const Options& o, CLI::App* sub) {
       loss.has_photometric = true;
     }
   }
+  progress.report(1.0, "done");
+  progress.finish();
 
   if (o.save) {
     project.keyframes = keyframes;

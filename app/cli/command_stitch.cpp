@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "app/cli/render_common.h"
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
@@ -30,7 +31,7 @@ int run(const Options& o) {
   StitchOptions so;
   parse_size(o.size, &so.width, &so.height, "--size");
   so.stitch_distance = o.stitch_distance;
-  if (const std::string e = so.check(); !e.empty()) throw Error(e);
+  so.check();
   const fs::path first_head = fs::path(o.in) / "heads" / rig.heads[0].name;
   if (!fs::is_directory(first_head))
     throw file_error(first_head.string(),
@@ -46,7 +47,7 @@ int run(const Options& o) {
 
   const StitchMaps maps = make_stitch_maps(rig, so);
   fs::create_directories(fs::path(o.out) / "frames");
-  Progress progress("stitch", static_cast<int>(names.size()), o.quiet);
+  ConsoleProgress progress("stitch", o.quiet);
   for (std::size_t i = 0; i < names.size(); ++i) {
     std::vector<cv::Mat> images;
     for (const auto& head : rig.heads) {
@@ -62,7 +63,7 @@ int run(const Options& o) {
     const std::string stem = fs::path(names[i]).stem().string();
     write_image((fs::path(o.out) / "frames" / (stem + ".jpg")).string(), stitch_heads(maps, images),
                 o.jpeg_quality);
-    progress.step(static_cast<int>(i + 1));
+    progress.frames(static_cast<int>(i + 1), static_cast<int>(names.size()));
   }
   progress.finish();
   const fs::path truth = fs::path(o.in) / "groundtruth.json";

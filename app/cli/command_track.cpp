@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/anchors_io.h"
 #include "model/error.h"
 #include "model/path_io.h"
@@ -145,29 +146,25 @@ Command add_track_command(CLI::App& parent) {
           eo.scale_frame_a = tracked(options->known_distance[0]);
           eo.scale_frame_b = tracked(options->known_distance[1]);
           eo.scale_distance_m = options->known_distance[2];
-          const std::string bad = eo.check();
-          if (!bad.empty()) throw Error("--known-distance: " + bad);
-        }
-        int last_percent = -1;
-        std::string last_stage;
-        auto progress = [&](const std::string& stage, double f) {
-          const int percent = static_cast<int>(std::floor(100 * f));
-          if (!options->quiet && (percent / 10 != last_percent / 10 || stage != last_stage)) {
-            std::cerr << "track: " << stage << " " << percent << "%\n";
-            last_percent = percent;
-            last_stage = stage;
+          try {
+            eo.check();
+          } catch (const Error& e) {
+            throw Error(std::string("--known-distance: ") + e.what());
           }
-          return true;
-        };
+        }
+        ConsoleProgress progress("track", options->quiet);
         EgomotionResult r = EgomotionTracker::run(
             n, [&](int i) { return source->read(i); }, eo, progress);
+        progress.finish();
         renumber_frames(&r.path, positions);
         if (source->kind() == CaptureKind::kImageFolder)
           for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
         AnchorRefinementReport anchor_report;
         if (!anchors.empty()) {
           if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
-          r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report);
+          ConsoleProgress anchor_progress("track: anchors", options->quiet);
+          r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report, anchor_progress);
+          anchor_progress.finish();
           // Two anchors or more fix the scale too.
           if (anchors.size() >= 2) r.path.scale_source = r.scale_source = "anchors";
         }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/error.h"
 #include "model/path_io.h"
 #include "processing/plan/dxf_import.h"
@@ -67,7 +68,9 @@ Command add_visibility_command(CLI::App& parent) {
               return kExitOk;
             }
             const CameraPath camera_path = read_path_file(options->path);
-            const VisibilityCells cells = index.cells_along_path(camera_path);
+            ConsoleProgress progress("visibility");
+            const VisibilityCells cells = index.cells_along_path(camera_path, progress);
+            progress.finish();
             nlohmann::json events = nlohmann::json::array(), cell_list = nlohmann::json::array();
             for (const auto& e : cells.events) events.push_back({{"frame", e.frame}, {"s", e.s}});
             for (const auto& c : cells.cells)

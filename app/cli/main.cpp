@@ -2,7 +2,9 @@
 #include <iostream>
 
 #include "app/cli/command.h"
+#include "app/cli/console_progress.h"
 #include "model/error.h"
+#include "processing/util/progress.h"
 
 int main(int argc, char** argv) {
   using namespace plenopath::cli;
@@ -28,10 +30,15 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitUsage;
   }
+  // Ctrl+C cancels the running step (every long step polls it through its ConsoleProgress).
+  install_interrupt_handler();
   for (const Command& c : commands) {
     if (!c.app->parsed()) continue;
     try {
       return c.run();
+    } catch (const plenopath::Cancelled&) {
+      std::cerr << "plenopath " << c.app->get_name() << ": cancelled\n";
+      return kExitCancelled;
     } catch (const plenopath::Error& e) {
       std::cerr << "plenopath " << c.app->get_name() << ": error: " << e.what() << "\n";
       return kExitFailed;

@@ -1,7 +1,5 @@
 #include "app/cli/render_common.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -60,29 +58,6 @@ void write_depth_png(const std::string& file, const cv::Mat& depth_m) {
   cv::Mat mm;
   depth_m.convertTo(mm, CV_16U, 1000.0);  // rounds and saturates at 65.535 m
   write_image(file, mm);
-}
-
-Progress::Progress(std::string what, int total, bool quiet)
-    : what_(std::move(what)),
-      total_(total),
-      quiet_(quiet),
-      tty_(isatty(2) != 0),
-      start_(std::chrono::steady_clock::now()) {}
-
-void Progress::step(int done) {
-  if (quiet_) return;
-  const int decile = total_ > 0 ? done * 10 / total_ : 10;
-  if (!tty_ && decile == last_printed_) return;
-  last_printed_ = decile;
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  char line[200];
-  std::snprintf(line, sizeof line, "%s: %d/%d frames, %.1f frames/s", what_.c_str(), done, total_,
-                s > 0 ? done / s : 0.0);
-  std::cerr << (tty_ ? "\r" : "") << line << (tty_ ? "" : "\n") << std::flush;
-}
-
-void Progress::finish() {
-  if (!quiet_ && tty_) std::cerr << "\n";
 }
 
 }  // namespace plenopath::cli

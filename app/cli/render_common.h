@@ -1,6 +1,5 @@
 #pragma once
-// Helpers shared by `plenopath render`, `stitch` and `sample`: plan loading, sizes, progress, image writing.
-#include <chrono>
+// Helpers shared by `plenopath render`, `stitch` and `sample`: plan loading, sizes, image writing.
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -18,20 +17,5 @@ std::vector<std::string> split_list(const std::string& text);
 void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality = 92);
 // Depth in metres (CV_32F) to a 16-bit PNG in millimetres (0 = no hit).
 void write_depth_png(const std::string& file, const cv::Mat& depth_m);
-
-// "render: 12/300 frames, 8.1 frames/s" on stderr: rewritten in place on a terminal, else every 10 %.
-class Progress {
- public:
-  Progress(std::string what, int total, bool quiet);
-  void step(int done);
-  void finish();
-
- private:
-  std::string what_;
-  int total_;
-  bool quiet_, tty_;
-  int last_printed_ = -1;
-  std::chrono::steady_clock::time_point start_;
-};
 
 }  // namespace plenopath::cli

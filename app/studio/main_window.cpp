@@ -131,10 +131,14 @@ MainWindow::MainWindow(QWidget* parent)
     task_label_->hide();
     progress_->hide();
     cancel_->hide();
-    statusBar()->showMessage(applied ? tr("Done") : tr("Stopped; nothing changed"), 4000);
+    if (applied) statusBar()->showMessage(tr("Done"), 4000);
   });
   connect(tasks_, &widgets::TaskRunner::failed, this, [this](const QString& title, const QString& message) {
     show_error(tr("%1 failed").arg(title), message);
+  });
+  // A cancel is what the author asked for: a note in the status bar, never an error.
+  connect(tasks_, &widgets::TaskRunner::cancelled, this, [this](const QString& title) {
+    statusBar()->showMessage(tr("%1 cancelled; nothing changed").arg(title), 8000);
   });
 
   connect(document_, &widgets::ProjectDocument::file_name_changed, this, [this] { update_title(); });

@@ -105,13 +105,9 @@ void ExportTourReaction::on_triggered() {
       window_.ask_export_target(QFileInfo(window_.document().file_name()).absoluteDir().filePath(suggested));
   if (output.isEmpty()) return;
   const std::string out = output.toStdString();
-  window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, widgets::TaskProgress& progress) {
+  window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, Progress& progress) {
     const TourExportOptions options = TourExportOptions::from_project(snapshot, out);
-    const TourExportReport report =
-        export_tour(snapshot, options, [&progress](double f, const std::string& stage) {
-          progress.report(f, stage);
-          return !progress.cancelled();
-        });
+    const TourExportReport report = export_tour(snapshot, options, progress);
     progress.report(1.0, "exported " + std::to_string(report.keyframes) + " keyframes, " +
                              std::to_string(report.package_bytes / 1024) + " KiB");
     return widgets::TaskResult{std::move(snapshot), 0};  // an export changes nothing in the document

@@ -13,16 +13,14 @@
 
 namespace plenopath::studio {
 
-using widgets::TaskCancelled;
-using widgets::TaskProgress;
 using widgets::TaskResult;
 
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices) {
-  return [choices](Project project, TaskProgress& progress) {
-    progress.report(0.05, "scanning " + choices.source);
+  return [choices](Project project, Progress& progress) {
+    progress.checkpoint(0.05, "scanning " + choices.source);
     choices.options.check();
     const std::unique_ptr<FrameSource> source = FrameSource::open(choices.source, choices.options);
-    progress.throw_if_cancelled();
+    progress.checkpoint(0.9, "listing " + std::to_string(source->frame_count()) + " frames");
     project.capture = capture_from_frame_source(*source, project.capture);
     if (choices.camera_height_m > 0) project.capture.camera_height_m = choices.camera_height_m;
     progress.report(1.0, std::to_string(source->frame_count()) + " frames");
@@ -31,29 +29,22 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
 }
 
 widgets::TaskFunction track_path_task() {
-  return [](Project project, TaskProgress& progress) {
+  return [](Project project, Progress& progress) {
     if (project.capture.empty()) throw Error("the project has no capture to track");
     const std::shared_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
     const int n = source->frame_count();
     if (n < 2) throw Error("the capture has fewer than two frames");
     EgomotionOptions options;
     options.camera_height_m = project.capture.camera_height_m;
-    if (const std::string problem = options.check(); !problem.empty()) throw Error(problem);
-    // Reading is about half the work; the geometric stages share the rest.
+    options.check();
+    // run() gives reading and tracking the frames the first half of the progress.
     EgomotionResult result = EgomotionTracker::run(
         n,
         [&](int i) {
           progress.throw_if_cancelled();
-          progress.report(0.5 * i / n, "reading frame " + std::to_string(i + 1) + " of " + std::to_string(n));
           return source->read(i);
         },
-        options,
-        [&](const std::string& stage, double fraction) {
-          progress.report(stage == "frames" ? 0.5 * fraction : 0.5 + 0.5 * fraction, stage);
-          return !progress.cancelled();
-        });
-    progress.throw_if_cancelled();
-    if (result.cancelled) throw TaskCancelled{};
+        options, progress);
     // The tracker numbers frames 0..n-1 in source order; the project uses capture indices.
     std::vector<int> positions(result.path.size());
     for (int i = 0; i < static_cast<int>(positions.size()); ++i)
@@ -73,43 +64,34 @@ widgets::TaskFunction track_path_task() {
 }
 
 widgets::TaskFunction compute_visibility_task() {
-  return [](Project project, TaskProgress& progress) {
+  return [](Project project, Progress& progress) {
     if (project.plan.occluder_segments().empty())
       throw Error("the plan has no occluder layer: mark the walls' layer as blocking sight first");
     if (project.path.size() < 2) throw Error("the project has no camera path yet");
-    progress.report(0.1, "building the visibility index");
+    progress.checkpoint(0.1, "building the visibility index");
     const VisibilityIndex index(project.plan);
-    progress.throw_if_cancelled();
-    progress.report(0.3, "events and cells along " + std::to_string(project.path.size()) + " frames");
-    // Cancel reaches inside: the callback throws TaskCancelled from the visibility workers.
-    project.visibility = index.cells_along_path(project.path, [&progress](double f) {
-      progress.throw_if_cancelled();
-      progress.report(0.3 + 0.7 * f, "visibility events and cells");
-    });
+    progress.checkpoint(0.3, "events and cells along " + std::to_string(project.path.size()) + " frames");
+    // Cancel reaches inside: the visibility workers stop at their next report.
+    SubProgress cells_progress(progress, 0.3, 1.0);
+    project.visibility = index.cells_along_path(project.path, cells_progress);
     progress.report(1.0);
     return TaskResult{std::move(project), widgets::kVisibilityChanged};
   };
 }
 
 widgets::TaskFunction refine_with_anchors_task() {
-  return [](Project project, TaskProgress& progress) {
+  return [](Project project, Progress& progress) {
     if (project.path.empty()) throw Error("the project has no camera path to refine");
     const std::vector<GpsPrior> gps = gps_priors_for_path(project);
     if (project.anchors.empty() && gps.size() < 2)
       throw Error("no anchors: Ctrl + drag a frame on the map to where it really was first");
     AnchorRefinementOptions options;
     AnchorRefinementReport report;
-    progress.report(0.02, "refining " + std::to_string(project.path.size()) + " frames with " +
-                              std::to_string(project.anchors.size()) + " anchors");
-    project.path = refine_path_with_anchors(
-        project.path, project.anchors, options, &report,
-        [&](int iteration) {
-          progress.report(std::min(0.99, (iteration + 1.0) / options.max_iterations),
-                          "iteration " + std::to_string(iteration));
-          return !progress.cancelled();
-        },
-        gps);
-    if (report.cancelled) throw TaskCancelled{};
+    progress.checkpoint(0.02, "refining " + std::to_string(project.path.size()) + " frames with " +
+                                  std::to_string(project.anchors.size()) + " anchors");
+    SubProgress solver_progress(progress, 0.02, 0.99, "refinement");
+    project.path =
+        refine_path_with_anchors(project.path, project.anchors, options, &report, solver_progress, gps);
     project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
     double worst = 0.0;
     for (const AnchorResidual& r : report.residuals) worst = std::max(worst, r.distance_m);

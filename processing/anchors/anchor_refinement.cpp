@@ -108,20 +108,21 @@ struct HeadingPrior {
   double heading_, sigma_;
 };
 
+// Reports each iteration (fraction of max_iterations) and stops the solver when cancelled; the caller throws
+// once Solve() has returned (no exception through Ceres).
 class ProgressCallback : public ceres::IterationCallback {
  public:
-  explicit ProgressCallback(const AnchorRefinementProgress& progress) : progress_(progress) {}
+  ProgressCallback(Progress& progress, int max_iterations)
+      : progress_(progress), max_iterations_(std::max(1, max_iterations)) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    if (progress_ && !progress_(summary.iteration)) {
-      cancelled = true;
-      return ceres::SOLVER_ABORT;
-    }
-    return ceres::SOLVER_CONTINUE;
+    progress_.report(std::min(0.99, (summary.iteration + 1.0) / max_iterations_),
+                     "iteration " + std::to_string(summary.iteration));
+    return progress_.is_cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
-  bool cancelled = false;
 
  private:
-  const AnchorRefinementProgress& progress_;
+  Progress& progress_;
+  int max_iterations_;
 };
 
 }  // namespace
@@ -214,8 +215,7 @@ void AnchorRefinementOptions::check() const {
 
 static CameraPath refine_one_piece(const CameraPath& path, const Anchors& anchors,
                                    const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                   const AnchorRefinementProgress& progress,
-                                   const std::vector<GpsPrior>& gps) {
+                                   Progress& progress, const std::vector<GpsPrior>& gps) {
   if (path.empty()) throw Error("anchor refinement: the path is empty");
   // GPS fixes on frames the path has; they align the path like anchors when there are no anchors.
   std::vector<GpsPrior> fixes;
@@ -280,11 +280,12 @@ static CameraPath refine_one_piece(const CameraPath& path, const Anchors& anchor
   // run to run, and `plenopath refine` would not repeat itself.
   solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;
-  ProgressCallback callback(progress);
+  ProgressCallback callback(progress, options.max_iterations);
   solver.callbacks.push_back(&callback);
   solver.update_state_every_iteration = false;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
+  progress.throw_if_cancelled();  // the path and the report stay as they were
 
   AnchorRefinementReport local_report;
   AnchorRefinementReport& r = report ? *report : local_report;
@@ -292,9 +293,7 @@ static CameraPath refine_one_piece(const CameraPath& path, const Anchors& anchor
   r.initial_cost = summary.initial_cost;
   r.final_cost = summary.final_cost;
   r.message = summary.BriefReport();
-  r.cancelled = callback.cancelled;
   r.residuals.clear();
-  if (callback.cancelled) return path;
 
   CameraPath out = start;
   for (std::size_t i = 0; i < out.frames.size(); ++i) {
@@ -361,8 +360,7 @@ CameraPath preview_path_with_anchors(const CameraPath& path, const Anchors& anch
 
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options, AnchorRefinementReport* report,
-                                    const AnchorRefinementProgress& progress,
-                                    const std::vector<GpsPrior>& gps) {
+                                    Progress& progress, const std::vector<GpsPrior>& gps) {
   options.check();
   if (path.piece_count() == 1) return refine_one_piece(path, anchors, options, report, progress, gps);
   // In pieces: each piece with anchors (or two GPS fixes) is refined on its own; the others stay unplaced.
@@ -382,17 +380,14 @@ CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& ancho
     if (own.empty() && own_gps.size() < 2) continue;
     any = true;
     AnchorRefinementReport r;
-    const CameraPath placed = refine_one_piece(piece, own, options, &r, progress, own_gps);
+    SubProgress piece_progress(progress, double(k) / path.piece_count(), double(k + 1) / path.piece_count(),
+                               "piece " + std::to_string(k));
+    const CameraPath placed = refine_one_piece(piece, own, options, &r, piece_progress, own_gps);
     total.iterations += r.iterations;
     total.initial_cost += r.initial_cost;
     total.final_cost += r.final_cost;
     total.message += (total.message.empty() ? "" : "; ") + ("piece " + std::to_string(k) + ": " + r.message);
     total.residuals.insert(total.residuals.end(), r.residuals.begin(), r.residuals.end());
-    if (r.cancelled) {
-      total.cancelled = true;
-      if (report) *report = total;
-      return path;
-    }
     put_piece_back(placed, k, &out);
   }
   if (!any)

@@ -16,6 +16,7 @@
 #include "model/project.h"
 #include "processing/capture/gps_track.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 
@@ -52,22 +53,18 @@ struct AnchorRefinementReport {
   std::vector<AnchorResidual> residuals;
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
-  bool cancelled = false;
   std::string message;  // Ceres' summary line
 };
-
-// Called once per solver iteration with the iteration number; return false to cancel (the path then
-// comes back unchanged, report->cancelled set).
-using AnchorRefinementProgress = std::function<bool(int iteration)>;
 
 // Needs at least one anchor (two or more to fix rotation and scale), or GPS priors on at least two frames.
 // GPS priors (processing/capture/gps_track.h) are weak position priors with a robust loss, so a few bad fixes
 // do not drag the path. Frames keep their flags. Throws Error on unusable input (empty path, anchors off the
-// path).
+// path). Reports once per solver iteration ("iteration 3"); a cancel stops the solver and ends with
+// Cancelled, `report` untouched.
 CameraPath refine_path_with_anchors(const CameraPath& path, const Anchors& anchors,
                                     const AnchorRefinementOptions& options = {},
                                     AnchorRefinementReport* report = nullptr,
-                                    const AnchorRefinementProgress& progress = {},
+                                    Progress& progress = null_progress(),
                                     const std::vector<GpsPrior>& gps = {});
 
 // The project's GPS fixes as priors on its path's frames (capture index in GpsPrior::frame): the capture's

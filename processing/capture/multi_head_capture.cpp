@@ -39,7 +39,11 @@ std::unique_ptr<FrameSource::Impl> open_heads(const std::string& rig_file,
                                               const FrameSourceOptions& options,
                                               const std::vector<std::string>* given_names) {
   const MultiHeadRig rig = read_rig_file(rig_file);
-  if (const std::string problem = rig.check(); !problem.empty()) throw file_error(rig_file, problem);
+  try {
+    rig.check();
+  } catch (const Error& e) {
+    throw file_error(rig_file, e.what());
+  }
   if (head_folders.size() != rig.heads.size())
     throw file_error(rig_file, "the rig has " + std::to_string(rig.heads.size()) + " heads but " +
                                    std::to_string(head_folders.size()) + " head folders were given");

@@ -1,5 +1,6 @@
 #include "processing/capture/video_encode.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <opencv2/videoio.hpp>
@@ -17,8 +18,7 @@ void VideoEncodeOptions::check() const {
 }
 
 VideoEncodeResult encode_video(FrameSource& source, const std::string& file,
-                               const VideoEncodeOptions& options,
-                               const std::function<bool(int, int)>& progress) {
+                               const VideoEncodeOptions& options, Progress& progress) {
   options.check();
   std::string ext = std::filesystem::path(file).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -47,20 +47,29 @@ VideoEncodeResult encode_video(FrameSource& source, const std::string& file,
   VideoEncodeResult result;
   result.fourcc = fourcc;
   const int n = source.frame_count();
-  for (int i = 0; i < n; ++i) {
-    if (progress && !progress(i, n)) break;
-    cv::Mat frame;
-    try {
-      frame = source.read(i);
-    } catch (const Error&) {
-      ++result.frames_failed;  // one bad frame does not end the video
-      continue;
+  try {
+    for (int i = 0; i < n; ++i) {
+      progress.checkpoint(static_cast<double>(i) / std::max(1, n),
+                          "frame " + std::to_string(i + 1) + " of " + std::to_string(n));
+      cv::Mat frame;
+      try {
+        frame = source.read(i);
+      } catch (const Error&) {
+        ++result.frames_failed;  // one bad frame does not end the video
+        continue;
+      }
+      writer.write(frame);
+      ++result.frames_written;
     }
-    writer.write(frame);
-    ++result.frames_written;
+  } catch (const Cancelled&) {
+    // No partial video is left behind.
+    writer.release();
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+    throw;
   }
   writer.release();
-  if (progress) progress(n, n);
+  progress.report(1.0, std::to_string(result.frames_written) + " frames written");
   return result;
 }
 

@@ -4,6 +4,8 @@
 #include <functional>
 #include <string>
 
+#include "processing/util/progress.h"
+
 namespace plenopath {
 
 class FrameSource;
@@ -20,10 +22,9 @@ struct VideoEncodeResult {
   std::string fourcc;
 };
 
-// Throws Error naming the file when the container/codec cannot be written. `progress(done, total)` may
-// return false to stop early (the video then holds the frames written so far).
+// Throws Error naming the file when the container/codec cannot be written. Reports per frame; a cancel
+// ends it with Cancelled and removes the unfinished file.
 VideoEncodeResult encode_video(FrameSource& source, const std::string& file,
-                               const VideoEncodeOptions& options = {},
-                               const std::function<bool(int, int)>& progress = {});
+                               const VideoEncodeOptions& options = {}, Progress& progress = null_progress());
 
 }  // namespace plenopath

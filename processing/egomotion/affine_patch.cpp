@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "model/option_check.h"
+
 namespace plenopath {
 namespace {
 
@@ -83,15 +85,14 @@ LinearStretch linear_stretch(const cv::Matx22d& a) {
   return {std::abs(q - r), q + r, std::atan2(k, e)};
 }
 
-std::string AffinePatchOptions::check() const {
-  std::ostringstream o;
-  if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
-  if (max_iterations < 1) o << "max_iterations must be >= 1; ";
-  if (!(converged_px > 0)) o << "converged_px must be > 0; ";
-  if (!(max_residual > 0)) o << "max_residual must be > 0; ";
-  if (!(min_scale > 0 && min_scale < 1 && max_scale > 1))
-    o << "scale limits must satisfy 0 < min < 1 < max; ";
-  return o.str();
+void AffinePatchOptions::check() const {
+  const std::string s = "AffinePatchOptions.";
+  require_option(window_px >= 5 && window_px % 2 == 1, s + "window_px", "must be odd and >= 5", window_px);
+  require_option(max_iterations >= 1, s + "max_iterations", "must be >= 1", max_iterations);
+  require_option(converged_px > 0, s + "converged_px", "must be > 0", converged_px);
+  require_option(max_residual > 0, s + "max_residual", "must be > 0", max_residual);
+  require_option(min_scale > 0 && min_scale < 1, s + "min_scale", "must be in (0, 1)", min_scale);
+  require_option(max_scale > 1, s + "max_scale", "must be > 1", max_scale);
 }
 
 AffinePatch make_affine_patch(const cv::Mat& image, cv::Point2d centre, const AffinePatchOptions& options) {

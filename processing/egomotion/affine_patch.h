@@ -24,7 +24,7 @@ struct AffinePatchOptions {
   // patches' difference, weighted) exceeds this: 0.5 is a correlation of about 0.88.
   double max_residual = 0.5;
   double min_scale = 0.6, max_scale = 1.7;  // singular values of the warp's linear part
-  std::string check() const;                // empty when valid
+  void check() const;                       // throws Error naming the bad field
 };
 
 // The feature as first seen: a normalised patch and what inverse compositional alignment precomputes.

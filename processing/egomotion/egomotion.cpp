@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "processing/egomotion/egomotion_steps.h"
 #include "processing/util/grey_image.h"
 #include "processing/util/statistics.h"
@@ -23,44 +24,50 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 }  // namespace
 
-std::string PieceOptions::check() const {
-  std::ostringstream o;
-  if (min_link_tracks < 1) o << "min_link_tracks must be >= 1; ";
-  if (min_piece_frames < 2) o << "min_piece_frames must be >= 2; ";
-  if (join_search_frames < 0) o << "join_search_frames must be >= 0; ";
-  if (join_max_pairs < 1) o << "join_max_pairs must be >= 1; ";
-  if (join_min_inliers < 8) o << "join_min_inliers must be >= 8; ";
-  if (!(join_agreement_deg > 0)) o << "join_agreement_deg must be > 0; ";
-  return o.str();
+void PieceOptions::check() const {
+  const std::string s = "PieceOptions.";
+  require_option(min_link_tracks >= 1, s + "min_link_tracks", "must be >= 1", min_link_tracks);
+  require_option(min_piece_frames >= 2, s + "min_piece_frames", "must be >= 2", min_piece_frames);
+  require_option(join_search_frames >= 0, s + "join_search_frames", "must be >= 0", join_search_frames);
+  require_option(join_max_pairs >= 1, s + "join_max_pairs", "must be >= 1", join_max_pairs);
+  require_option(join_min_inliers >= 8, s + "join_min_inliers", "must be >= 8", join_min_inliers);
+  require_option(join_agreement_deg > 0, s + "join_agreement_deg", "must be > 0", join_agreement_deg);
 }
 
-std::string EgomotionOptions::check() const {
-  std::ostringstream o;
-  const std::string r = ring.check(), k = klt.check(), f = refinement.check(), l = loop.check(),
-                    p = pieces.check();
-  if (!l.empty()) o << "loop: " << l;
-  if (!p.empty()) o << "pieces: " << p;
-  if (!r.empty()) o << "ring: " << r;
-  if (!k.empty()) o << "klt: " << k;
-  if (!f.empty()) o << "refinement: " << f;
-  if (!(keyframe_parallax_deg > 0)) o << "keyframe_parallax_deg must be > 0; ";
-  if (!(keyframe_max_turn_deg > 0)) o << "keyframe_max_turn_deg must be > 0; ";
-  if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) o << "keyframe_min_shared must be in (0, 1); ";
-  if (!(max_step_ratio > 1)) o << "max_step_ratio must be > 1; ";
-  if (!(max_step_spread >= 0)) o << "max_step_spread must be >= 0; ";
-  if (!(max_step_turn_disagreement_deg > 0)) o << "max_step_turn_disagreement_deg must be > 0; ";
-  if (!(min_triangulation_deg > 0)) o << "min_triangulation_deg must be > 0; ";
-  if (!(max_initial_error_deg > 0)) o << "max_initial_error_deg must be > 0; ";
-  if (min_point_keyframes < 2) o << "min_point_keyframes must be >= 2; ";
-  if (resection_min_points < 3) o << "resection_min_points must be >= 3; ";
-  if (camera_height_m < 0) o << "camera_height_m must be >= 0 (0 = unknown); ";
-  if (scale_distance_m < 0) o << "scale_distance_m must be >= 0; ";
-  if (scale_distance_m > 0 && (scale_frame_a < 0 || scale_frame_b < 0 || scale_frame_a == scale_frame_b))
-    o << "scale_distance_m needs two different frames scale_frame_a and scale_frame_b; ";
-  if (!(jump_factor > 1)) o << "jump_factor must be > 1; ";
-  if (!(moving_outlier_fraction > 0 && moving_outlier_fraction <= 1))
-    o << "moving_outlier_fraction must be in (0, 1]; ";
-  return o.str();
+void EgomotionOptions::check() const {
+  loop.check();
+  pieces.check();
+  ring.check();
+  klt.check();
+  refinement.check();
+  const std::string s = "EgomotionOptions.";
+  require_option(keyframe_parallax_deg > 0, s + "keyframe_parallax_deg", "must be > 0",
+                 keyframe_parallax_deg);
+  require_option(keyframe_max_turn_deg > 0, s + "keyframe_max_turn_deg", "must be > 0",
+                 keyframe_max_turn_deg);
+  require_option(keyframe_min_shared > 0 && keyframe_min_shared < 1, s + "keyframe_min_shared",
+                 "must be in (0, 1)", keyframe_min_shared);
+  require_option(max_step_ratio > 1, s + "max_step_ratio", "must be > 1", max_step_ratio);
+  require_option(max_step_spread >= 0, s + "max_step_spread", "must be >= 0", max_step_spread);
+  require_option(max_step_turn_disagreement_deg > 0, s + "max_step_turn_disagreement_deg", "must be > 0",
+                 max_step_turn_disagreement_deg);
+  require_option(min_triangulation_deg > 0, s + "min_triangulation_deg", "must be > 0",
+                 min_triangulation_deg);
+  require_option(max_initial_error_deg > 0, s + "max_initial_error_deg", "must be > 0",
+                 max_initial_error_deg);
+  require_option(min_point_keyframes >= 2, s + "min_point_keyframes", "must be >= 2", min_point_keyframes);
+  require_option(resection_min_points >= 3, s + "resection_min_points", "must be >= 3", resection_min_points);
+  require_option(camera_height_m >= 0, s + "camera_height_m", "must be >= 0 (0 = unknown)", camera_height_m);
+  require_option(scale_distance_m >= 0, s + "scale_distance_m", "must be >= 0", scale_distance_m);
+  if (scale_distance_m > 0) {
+    require_option(scale_frame_a >= 0, s + "scale_frame_a", "must be a frame (>= 0) with scale_distance_m",
+                   scale_frame_a);
+    require_option(scale_frame_b >= 0 && scale_frame_b != scale_frame_a, s + "scale_frame_b",
+                   "must be a frame (>= 0) other than scale_frame_a", scale_frame_b);
+  }
+  require_option(jump_factor > 1, s + "jump_factor", "must be > 1", jump_factor);
+  require_option(moving_outlier_fraction > 0 && moving_outlier_fraction <= 1, s + "moving_outlier_fraction",
+                 "must be in (0, 1]", moving_outlier_fraction);
 }
 
 struct EgomotionTracker::State {
@@ -82,8 +89,7 @@ struct EgomotionTracker::State {
 };
 
 EgomotionTracker::EgomotionTracker(const EgomotionOptions& options) {
-  const std::string bad = options.check();
-  if (!bad.empty()) throw Error("egomotion options: " + bad);
+  options.check();
   state_ = std::make_unique<State>(options);
 }
 EgomotionTracker::~EgomotionTracker() = default;
@@ -129,7 +135,7 @@ void EgomotionTracker::add_frame(const cv::Mat& bgr) {
   s.seconds_frames += seconds_since(t0);
 }
 
-EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
+EgomotionResult EgomotionTracker::finish(Progress& progress) {
   const auto t_start = Clock::now();
   State& s = *state_;
   const EgomotionOptions& opt = s.options;
@@ -137,16 +143,6 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   result.seconds_per_frame_stage = s.seconds_frames;
   const int n = static_cast<int>(s.rings.size());
   if (n == 0) throw Error("egomotion: the capture has no frames");
-  bool cancelled = false;
-  auto report = [&](const char* stage, double f) {
-    if (callback && !cancelled && !callback(stage, f)) cancelled = true;
-    return !cancelled;
-  };
-  auto finish_cancelled = [&]() {
-    result.cancelled = true;
-    result.seconds_geometry = seconds_since(t_start);
-    return result;
-  };
   TrackerMeasurements m;
   m.options = &opt;
   const int width = s.klt.width();
@@ -162,10 +158,11 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   m.refinement.outlier_threshold *= m.coarseness;
 
   // ---- 1. coarse headings
-  report("headings", 0.0);
+  // Progress: the headings 5 %, the pieces the rest (each by its share of the frames).
+  progress.checkpoint(0.0, "headings");
   const RingHeadings rh = solve_ring_headings(s.rings, opt.ring);
   result.ring_headings = rh.headings;
-  if (!report("headings", 1.0)) return finish_cancelled();
+  progress.checkpoint(0.05, "headings");
 
   const TrackView view(s.klt, n);
   m.view = &view;
@@ -201,11 +198,9 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
   for (int k = 0; k < piece_count; ++k) {
     const PiecePlan& plan = pieces.pieces[k];
     const double share = double(plan.last - plan.first + 1) / n, before = double(plan.first) / n;
-    const PieceSolution solved =
-        solve_piece(plan, pieces.joins, m, &frames, rng, [&](const char* stage, double f) {
-          return report(stage, piece_count == 1 ? f : before + share * f);
-        });
-    if (solved.cancelled || cancelled) return finish_cancelled();
+    SubProgress piece_progress(progress, 0.05 + 0.95 * before, 0.05 + 0.95 * (before + share),
+                               piece_count == 1 ? std::string() : "piece " + std::to_string(k + 1));
+    const PieceSolution solved = solve_piece(plan, pieces.joins, m, &frames, rng, piece_progress);
     for (int f = plan.first; f <= plan.last; ++f) {
       const Eigen::Vector3d& p = solved.poses[f - plan.first];
       frames[f].x = p.x();
@@ -251,19 +246,17 @@ EgomotionResult EgomotionTracker::finish(const EgomotionCallback& callback) {
 }
 
 EgomotionResult EgomotionTracker::run(int frame_count, const std::function<cv::Mat(int)>& read,
-                                      const EgomotionOptions& options, const EgomotionCallback& callback) {
+                                      const EgomotionOptions& options, Progress& progress) {
   EgomotionTracker tracker(options);
+  // Reading and tracking the frames is about half the work, the geometric steps the rest.
+  SubProgress frames_progress(progress, 0.0, 0.5);
   for (int i = 0; i < frame_count; ++i) {
     const cv::Mat frame = read(i);
     tracker.add_frame(frame);
-    if (callback && (i % 8 == 0 || i == frame_count - 1) &&
-        !callback("frames", double(i + 1) / frame_count)) {
-      EgomotionResult r;
-      r.cancelled = true;
-      return r;
-    }
+    if (i % 8 == 0 || i == frame_count - 1) frames_progress.checkpoint(double(i + 1) / frame_count, "frames");
   }
-  return tracker.finish(callback);
+  SubProgress finish_progress(progress, 0.5, 1.0);
+  return tracker.finish(finish_progress);
 }
 
 }  // namespace plenopath

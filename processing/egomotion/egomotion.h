@@ -1,7 +1,7 @@
 #pragma once
 // The camera path from the panoramas alone (seed paper §4, issue 5), COLMAP-controller style: options with
 // defaults and check(), a streaming add_frame() (ring image + KLT per frame, so frames are read once) and
-// finish() that runs the geometric steps with a progress/cancel callback:
+// finish() that runs the geometric steps, reporting to a Progress (processing/util/progress.h):
 //   1. coarse headings from ring images (ring_heading.h);
 //   1b. frame-to-frame turns from the KLT tracks (median azimuth change refined by planar two-view),
 //      chained: the heading guide of the later steps (the rings bridge frames without tracks);
@@ -30,6 +30,7 @@
 #include "processing/egomotion/path_refinement.h"
 #include "processing/egomotion/planar_two_view.h"
 #include "processing/egomotion/ring_heading.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 
@@ -44,7 +45,7 @@ struct PieceOptions {
   int join_min_inliers = 15;    // verified descriptor matches of a frame pair across the stretch
   // ... and two such pairs must agree on the turn across it (carried by the tracked turns on each side).
   double join_agreement_deg = 1.0;
-  std::string check() const;  // empty when valid
+  void check() const;  // throws Error naming the bad field
 };
 
 struct EgomotionOptions {
@@ -82,7 +83,7 @@ struct EgomotionOptions {
   // turns); 25 people walking about the office reach 0.09.
   double moving_outlier_fraction = 0.15;
   std::uint32_t seed = 1;
-  std::string check() const;  // empty when valid
+  void check() const;  // throws Error naming the bad field
 };
 
 struct EgomotionResult {
@@ -105,14 +106,12 @@ struct EgomotionResult {
   double scale_factor = 1.0;                     // piece 0's metres per internal unit applied at the end
   int floor_points = 0;                          // points used for the camera-height scale
   int flagged_frames = 0;
-  bool cancelled = false;
   double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)
   double seconds_geometry = 0;         // everything in finish()
 };
 
-// stage: "frames", "headings", "chaining", "refinement", "resection"; fraction of that stage in [0, 1].
-// Return false to cancel (finish() then returns with cancelled = true and what it has so far).
-using EgomotionCallback = std::function<bool(const std::string& stage, double fraction)>;
+// Progress stages: "frames" (run() only), "headings", "chaining", "refinement", "resection". A cancel ends
+// finish() or run() with Cancelled (processing/util/progress.h) and no result.
 
 class EgomotionTracker {
  public:
@@ -120,11 +119,11 @@ class EgomotionTracker {
   ~EgomotionTracker();
   void add_frame(const cv::Mat& bgr);  // frames in capture order
   int frame_count() const;
-  EgomotionResult finish(const EgomotionCallback& callback = {});
+  EgomotionResult finish(Progress& progress = null_progress());
 
   // Convenience: reads frame_count frames through `read` (whose time is not counted), then finishes.
   static EgomotionResult run(int frame_count, const std::function<cv::Mat(int)>& read,
-                             const EgomotionOptions& options, const EgomotionCallback& callback = {});
+                             const EgomotionOptions& options, Progress& progress = null_progress());
 
  private:
   struct State;

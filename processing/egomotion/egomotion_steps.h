@@ -88,13 +88,12 @@ struct PieceSolution {
   std::vector<std::pair<int, int>> loop_frames;
   std::string scale_source = "relative";
   double scale_factor = 1.0;
-  bool cancelled = false;
 };
 
-// Flags and confidences go to `frames` (all frames of the capture). report(stage, fraction of that stage for
-// this piece) returns false to cancel.
+// Flags and confidences go to `frames` (all frames of the capture). Reports the stages "chaining",
+// "refinement" and "resection" over this piece's [0, 1]; a cancel ends it with Cancelled.
 PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>& joins,
                           const TrackerMeasurements& m, std::vector<PathFrame>* frames, std::mt19937& rng,
-                          const std::function<bool(const char*, double)>& report);
+                          Progress& progress);
 
 }  // namespace plenopath::egomotion_steps

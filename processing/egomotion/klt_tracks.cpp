@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "processing/util/grey_image.h"
 #include "processing/util/statistics.h"
 #include "rig/spherical.h"
@@ -23,29 +24,31 @@ double deformation(const cv::Matx22d& a) {
 }
 }  // namespace
 
-std::string KltOptions::check() const {
-  std::ostringstream o;
-  if (work_width < 0 || (work_width > 0 && work_width < 64)) o << "work_width must be 0 or >= 64; ";
-  if (max_features < 20) o << "max_features must be >= 20; ";
-  if (min_features < 0 || min_features > max_features) o << "min_features must be in [0, max_features]; ";
-  if (!(quality_level > 0 && quality_level < 1)) o << "quality_level must be in (0, 1); ";
-  if (min_distance_px < 1) o << "min_distance_px must be >= 1; ";
-  if (window_px < 5 || window_px % 2 == 0) o << "window_px must be odd and >= 5; ";
-  if (pyramid_levels < 0 || pyramid_levels > 6) o << "pyramid_levels must be in [0, 6]; ";
-  if (!(min_parallax_flow_px >= 0)) o << "min_parallax_flow_px must be >= 0; ";
-  if (max_track_frames < 0 || max_track_frames == 1) o << "max_track_frames must be 0 or >= 2; ";
-  if (affine_refinement && !affine.check().empty()) o << "affine: " << affine.check();
-  if (!(max_affine_correction_px > 0)) o << "max_affine_correction_px must be > 0; ";
-  if (!(affine_refresh_deformation > 0)) o << "affine_refresh_deformation must be > 0; ";
-  if (!(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90))
-    o << "max_abs_elevation_deg must be in (10, 90]; ";
-  return o.str();
+void KltOptions::check() const {
+  const std::string s = "KltOptions.";
+  require_option(work_width == 0 || work_width >= 64, s + "work_width", "must be 0 or >= 64", work_width);
+  require_option(max_features >= 20, s + "max_features", "must be >= 20", max_features);
+  require_option(min_features >= 0 && min_features <= max_features, s + "min_features",
+                 "must be in [0, max_features]", min_features);
+  require_option(quality_level > 0 && quality_level < 1, s + "quality_level", "must be in (0, 1)",
+                 quality_level);
+  require_option(min_distance_px >= 1, s + "min_distance_px", "must be >= 1", min_distance_px);
+  require_option(window_px >= 5 && window_px % 2 == 1, s + "window_px", "must be odd and >= 5", window_px);
+  require_option(pyramid_levels >= 0 && pyramid_levels <= 6, s + "pyramid_levels", "must be in [0, 6]",
+                 pyramid_levels);
+  require_option(min_parallax_flow_px >= 0, s + "min_parallax_flow_px", "must be >= 0", min_parallax_flow_px);
+  require_option(max_track_frames == 0 || max_track_frames >= 2, s + "max_track_frames", "must be 0 or >= 2",
+                 max_track_frames);
+  if (affine_refinement) affine.check();
+  require_option(max_affine_correction_px > 0, s + "max_affine_correction_px", "must be > 0",
+                 max_affine_correction_px);
+  require_option(affine_refresh_deformation > 0, s + "affine_refresh_deformation", "must be > 0",
+                 affine_refresh_deformation);
+  require_option(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90, s + "max_abs_elevation_deg",
+                 "must be in (10, 90]", max_abs_elevation_deg);
 }
 
-KltTracker::KltTracker(const KltOptions& options) : options_(options) {
-  const std::string problem = options.check();
-  if (!problem.empty()) throw Error("KLT options: " + problem);
-}
+KltTracker::KltTracker(const KltOptions& options) : options_(options) { options.check(); }
 
 Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
   // OpenCV puts pixel centres on integers; rig/spherical.h puts them at u + 0.5.

@@ -43,7 +43,7 @@ struct KltOptions {
   AffinePatchOptions affine;
   double max_affine_correction_px = 1.5;
   double affine_refresh_deformation = 0.15;
-  std::string check() const;  // empty when valid
+  void check() const;  // throws Error naming the bad field
 };
 
 struct TrackObservation {

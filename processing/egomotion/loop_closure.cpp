@@ -7,6 +7,7 @@
 #include <opencv2/features2d.hpp>
 #include <sstream>
 
+#include "model/option_check.h"
 #include "processing/util/statistics.h"
 
 namespace plenopath {
@@ -32,16 +33,17 @@ std::vector<std::pair<int, int>> match_descriptors(const cv::Mat& a, const cv::M
   return out;
 }
 
-std::string LoopClosureOptions::check() const {
-  std::ostringstream o;
-  if (descriptor_stride < 1) o << "descriptor_stride must be >= 1; ";
-  if (!(max_distance_steps > 0)) o << "max_distance_steps must be > 0; ";
-  if (!(min_travel_steps > max_distance_steps)) o << "min_travel_steps must exceed max_distance_steps; ";
-  if (!(max_turn_disagreement_deg > 0)) o << "max_turn_disagreement_deg must be > 0; ";
-  if (min_inliers < 8) o << "min_inliers must be >= 8; ";
-  if (!(ratio > 0 && ratio <= 1)) o << "ratio must be in (0, 1]; ";
-  if (spacing_frames < 0) o << "spacing_frames must be >= 0; ";
-  return o.str();
+void LoopClosureOptions::check() const {
+  const std::string s = "LoopClosureOptions.";
+  require_option(descriptor_stride >= 1, s + "descriptor_stride", "must be >= 1", descriptor_stride);
+  require_option(max_distance_steps > 0, s + "max_distance_steps", "must be > 0", max_distance_steps);
+  require_option(min_travel_steps > max_distance_steps, s + "min_travel_steps",
+                 "must exceed max_distance_steps", min_travel_steps);
+  require_option(max_turn_disagreement_deg > 0, s + "max_turn_disagreement_deg", "must be > 0",
+                 max_turn_disagreement_deg);
+  require_option(min_inliers >= 8, s + "min_inliers", "must be >= 8", min_inliers);
+  require_option(ratio > 0 && ratio <= 1, s + "ratio", "must be in (0, 1]", ratio);
+  require_option(spacing_frames >= 0, s + "spacing_frames", "must be >= 0", spacing_frames);
 }
 
 FrameDescriptors describe_frame(const cv::Mat& gray, int frame, const std::vector<int>& tracks,

@@ -30,8 +30,8 @@ struct LoopClosureOptions {
   double max_turn_disagreement_deg = 6.0;  // the verified turn may differ this much from the estimated one
   int min_inliers = 40;                    // verified matches needed to accept a pair
   double ratio = 0.8;                      // Lowe's ratio test on Hamming distances
-  int spacing_frames = 24;    // after an accepted pair, the next candidate frame is this much later
-  std::string check() const;  // empty when valid
+  int spacing_frames = 24;  // after an accepted pair, the next candidate frame is this much later
+  void check() const;       // throws Error naming the bad field
 };
 
 struct FrameDescriptors {

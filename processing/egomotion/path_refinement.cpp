@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "processing/egomotion/bearing_cost.h"
 
 namespace plenopath {
@@ -28,24 +29,19 @@ struct DistancePrior {
   double distance, weight;
 };
 
+// Reports each iteration to [begin, end] of `progress` and stops the solver when cancelled (no exception
+// through Ceres: the caller throws once Solve() has returned).
 class ProgressCallback : public ceres::IterationCallback {
  public:
-  ProgressCallback(const RefinementProgress& progress, double begin, double end, int max_iterations)
-      : progress_(progress), begin_(begin), end_(end), max_iterations_(std::max(1, max_iterations)) {}
+  ProgressCallback(Progress& progress, double begin, double end, int max_iterations)
+      : progress_(progress, begin, end), max_iterations_(std::max(1, max_iterations)) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    if (!progress_) return ceres::SOLVER_CONTINUE;
-    const double f = std::min(1.0, static_cast<double>(summary.iteration) / max_iterations_);
-    if (!progress_(begin_ + (end_ - begin_) * f)) {
-      cancelled = true;
-      return ceres::SOLVER_ABORT;
-    }
-    return ceres::SOLVER_CONTINUE;
+    progress_.report(std::min(1.0, static_cast<double>(summary.iteration) / max_iterations_));
+    return progress_.is_cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
-  bool cancelled = false;
 
  private:
-  const RefinementProgress& progress_;
-  double begin_, end_;
+  SubProgress progress_;
   int max_iterations_;
 };
 
@@ -68,10 +64,10 @@ double rms(const std::vector<double>& e) {
 }
 
 // Solves with poses [first, last] free except those in [first, held_end), those from held_from on, and pose
-// 0, which are held. Returns false when cancelled.
-bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, int last, int held_end,
-                 int max_iterations, const RefinementProgress& progress, double begin, double end,
-                 RefinementReport* report, int held_from = std::numeric_limits<int>::max()) {
+// 0, which are held. Throws Cancelled.
+void solve_range(BundleProblem& p, const RefinementOptions& options, int first, int last, int held_end,
+                 int max_iterations, Progress& progress, double begin, double end, RefinementReport* report,
+                 int held_from = std::numeric_limits<int>::max()) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
@@ -89,7 +85,7 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
     pose_used[o.pose] = true;
     ++residuals;
   }
-  if (residuals == 0) return true;
+  if (residuals == 0) return;
   bool any_free = false;
   for (int i = first; i <= last; ++i) {
     if (!pose_used[i]) continue;
@@ -124,7 +120,7 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
                                nullptr, p.poses[anchor].data(), p.poses[far].data());
     }
   }
-  if (!any_free) return true;
+  if (!any_free) return;
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = max_iterations;
@@ -137,7 +133,7 @@ bool solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   report->iterations += static_cast<int>(summary.iterations.size());
-  return !callback.cancelled;
+  progress.throw_if_cancelled();
 }
 
 // Moves the poses after `last` and the points first seen after it by the rigid motion that took pose
@@ -187,18 +183,21 @@ std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& obs
 
 }  // namespace
 
-std::string RefinementOptions::check() const {
-  std::ostringstream o;
-  if (!(loss_scale > 0)) o << "loss_scale must be > 0; ";
-  if (window_keyframes < 0 || (window_keyframes > 0 && window_keyframes < 4))
-    o << "window_keyframes must be 0 or >= 4; ";
-  if (window_overlap < 2 || (window_keyframes > 0 && window_overlap >= window_keyframes))
-    o << "window_overlap must be >= 2 and below window_keyframes; ";
-  if (window_max_iterations < 0 || global_max_iterations < 0) o << "iteration limits must be >= 0; ";
-  if (threads < 1) o << "threads must be >= 1; ";
-  if (outlier_threshold < 0) o << "outlier_threshold must be >= 0; ";
-  if (global_max_observations < 0) o << "global_max_observations must be >= 0 (0 = no limit); ";
-  return o.str();
+void RefinementOptions::check() const {
+  const std::string s = "RefinementOptions.";
+  require_option(loss_scale > 0, s + "loss_scale", "must be > 0", loss_scale);
+  require_option(window_keyframes == 0 || window_keyframes >= 4, s + "window_keyframes", "must be 0 or >= 4",
+                 window_keyframes);
+  require_option(window_overlap >= 2 && (window_keyframes == 0 || window_overlap < window_keyframes),
+                 s + "window_overlap", "must be >= 2 and below window_keyframes", window_overlap);
+  require_option(window_max_iterations >= 0, s + "window_max_iterations", "must be >= 0",
+                 window_max_iterations);
+  require_option(global_max_iterations >= 0, s + "global_max_iterations", "must be >= 0",
+                 global_max_iterations);
+  require_option(threads >= 1, s + "threads", "must be >= 1", threads);
+  require_option(outlier_threshold >= 0, s + "outlier_threshold", "must be >= 0", outlier_threshold);
+  require_option(global_max_observations >= 0, s + "global_max_observations", "must be >= 0 (0 = no limit)",
+                 global_max_observations);
 }
 
 std::vector<double> observation_errors(const BundleProblem& p) {
@@ -216,10 +215,8 @@ std::vector<double> observation_errors(const BundleProblem& p) {
   return e;
 }
 
-RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options,
-                               const RefinementProgress& progress) {
-  const std::string bad = options.check();
-  if (!bad.empty()) throw Error("refinement options: " + bad);
+RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options, Progress& progress) {
+  options.check();
   quiet_ceres_logging();
   RefinementReport report;
   report.initial_rms = rms(observation_errors(problem));
@@ -242,12 +239,8 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       const double begin = windowed_share * w / windows, end = windowed_share * (w + 1) / windows;
       ++report.windows;
       const Eigen::Vector3d last_before = problem.poses[last];
-      if (!solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress,
-                       begin, end, &report)) {
-        report.cancelled = true;
-        report.final_rms = rms(observation_errors(problem));
-        return report;
-      }
+      solve_range(problem, options, first, last, held_end, options.window_max_iterations, progress, begin,
+                  end, &report);
       // The poses and points beyond the window have not moved yet: carry them along with the window's last
       // pose, so that the next window does not start from a kink (held poses corrected, free ones not),
       // which can trap its first free poses in a wrong minimum.
@@ -259,20 +252,20 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
   const std::size_t limit = static_cast<std::size_t>(options.global_max_observations);
   bool thinned_any = false;
   auto solve_global = [&](int max_iterations, double begin, double end) {
-    if (limit == 0 || problem.observations.size() <= limit)
-      return solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+    if (limit == 0 || problem.observations.size() <= limit) {
+      solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+      return;
+    }
     thinned_any = true;
     std::vector<BundleObservation> all = thinned(problem.observations, problem.points.size(), limit);
     std::swap(all, problem.observations);
-    const bool ok = solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+    solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
     std::swap(all, problem.observations);
-    return ok;
   };
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
-    if (!solve_global(options.global_max_iterations, windowed_share, split)) {
-      report.cancelled = true;
-    } else if (options.outlier_threshold > 0) {
+    solve_global(options.global_max_iterations, windowed_share, split);
+    if (options.outlier_threshold > 0) {
       const std::vector<double> errors = observation_errors(problem);
       // Whole points that fit badly go too: a "corner" where an edge crosses a farther surface (no 3-D
       // point) slides smoothly as the camera moves, so each of its observations is only a little off.
@@ -299,21 +292,18 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       }
       report.outliers_removed = static_cast<int>(problem.observations.size() - kept.size());
       problem.observations = std::move(kept);
-      if (!solve_global(std::max(1, options.global_max_iterations / 2), split, 1.0)) report.cancelled = true;
+      solve_global(std::max(1, options.global_max_iterations / 2), split, 1.0);
     }
     // A thinned global pass fixed the path's shape; windows against every observation, each holding its
     // first and last poses (so the shape stays), restore the detail the thinning left out.
-    if (thinned_any && !report.cancelled) {
+    if (thinned_any) {
       const int size = options.window_keyframes > 0 ? options.window_keyframes : 80;
       const int overlap = std::min(options.window_overlap, size / 4);
       for (int first = 0; first + overlap < n; first += size - 2 * overlap) {
         const int last = std::min(n - 1, first + size - 1);
         const int held_from = last == n - 1 ? n : last - overlap + 1;
-        if (!solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
-                         options.window_max_iterations, progress, 1.0, 1.0, &report, held_from)) {
-          report.cancelled = true;
-          break;
-        }
+        solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
+                    options.window_max_iterations, progress, 1.0, 1.0, &report, held_from);
         if (last == n - 1) break;
       }
     }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "processing/util/progress.h"
+
 namespace plenopath {
 
 struct BundleObservation {
@@ -44,7 +46,7 @@ struct RefinementOptions {
   // per thread in whatever order the threads finish, the last bits differ run to run, and those differences
   // grow through the outlier pass and the resection's inlier decisions (0.19 deg vs 1.42 deg seen).
   int threads = 1;
-  std::string check() const;  // empty when valid
+  void check() const;  // throws Error naming the bad field
 };
 
 struct RefinementReport {
@@ -53,14 +55,12 @@ struct RefinementReport {
   int windows = 0;
   int iterations = 0;        // summed over all solves
   int outliers_removed = 0;  // observations dropped as outliers
-  bool cancelled = false;
 };
 
-// progress(fraction in [0, 1]) returns false to cancel; it is called from Ceres' iteration callback.
-using RefinementProgress = std::function<bool(double)>;
-
+// Reports per Ceres iteration; a cancel stops the solver and ends with Cancelled (`problem` is then partly
+// refined: a caller that cancels drops it).
 RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options,
-                               const RefinementProgress& progress = {});
+                               Progress& progress = null_progress());
 
 // Angular residual (radians) of each observation under the problem's current values.
 std::vector<double> observation_errors(const BundleProblem& problem);

@@ -55,7 +55,13 @@ double scale_from_camera_height(const BundleProblem& problem, double camera_heig
 
 PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>& joins,
                           const TrackerMeasurements& m, std::vector<PathFrame>* frames_out, std::mt19937& rng,
-                          const std::function<bool(const char*, double)>& report) {
+                          Progress& progress) {
+  // The stages' shares of this piece's progress: chaining, refinement (windows, then global), resection.
+  auto report = [&](const std::string& stage, double f) {
+    const double begin = stage == "chaining" ? 0.0 : stage == "refinement" ? 0.2 : 0.75;
+    const double end = stage == "chaining" ? 0.2 : stage == "refinement" ? 0.75 : 1.0;
+    progress.checkpoint(begin + (end - begin) * f, stage);
+  };
   const EgomotionOptions& opt = *m.options;
   const TrackView& view = *m.view;
   const std::vector<FeatureTrack>& tracks = view.tracks();
@@ -234,10 +240,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
       }
     }
     for (int t : view.frame_tracks[b]) triangulate_track(t, k);
-    if (k % 16 == 0 && !report("chaining", double(k) / kfn)) {
-      result.cancelled = true;
-      return result;
-    }
+    if (k % 16 == 0) report("chaining", double(k) / kfn);
   }
 
   // Coarse pose of every frame: keyframes interpolated, headings from the tracked turns.
@@ -287,22 +290,14 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   }
   result.points = static_cast<int>(problem.points.size());
   result.observations = static_cast<int>(problem.observations.size());
-  auto cancel = [&]() {
-    result.cancelled = true;
-    return result;
-  };
-  if (!report("refinement", 0.0)) return cancel();
+  report("refinement", 0.0);
   // Windows first; then the places the walk came back to (and the joins) are tied together, and one global
   // pass removes the drift in between.
   RefinementOptions windowed = refinement, global = refinement;
   windowed.global_max_iterations = 0;
   global.window_keyframes = 0;
-  bool cancelled = false;
-  const RefinementReport windows = refine_bundle(problem, windowed, [&](double f) {
-    if (!report("refinement", 0.5 * f)) cancelled = true;
-    return !cancelled;
-  });
-  if (windows.cancelled || cancelled) return cancel();
+  SubProgress windows_progress(progress, 0.2, 0.475, "refinement");
+  const RefinementReport windows = refine_bundle(problem, windowed, windows_progress);
   {
     std::vector<double> kf_travelled(kfn, 0.0);
     for (int k = 1; k < kfn; ++k)
@@ -336,11 +331,8 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     }
     result.merged_points = merge_loop_points(loops, &problem, &point_of_track);
   }
-  const RefinementReport global_report = refine_bundle(problem, global, [&](double f) {
-    if (!report("refinement", 0.5 + 0.5 * f)) cancelled = true;
-    return !cancelled;
-  });
-  if (global_report.cancelled || cancelled) return cancel();
+  SubProgress global_progress(progress, 0.475, 0.75, "refinement");
+  const RefinementReport global_report = refine_bundle(problem, global, global_progress);
   result.refinement = global_report;
   result.refinement.initial_rms = windows.initial_rms;
   result.refinement.windows = windows.windows;
@@ -404,7 +396,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
                      "% of tracks move against the static scene");
       frames[f].confidence = 1.0 - m.moving_share[f];
     }
-    if ((f - first) % 64 == 0 && !report("resection", double(f - first) / count)) return cancel();
+    if ((f - first) % 64 == 0) report("resection", double(f - first) / count);
   }
   for (int k = 1; k < kfn; ++k) {
     if (!kf_bridged[k] || join_at.count(keyframes[k - 1])) continue;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "model/option_check.h"
 #include "processing/util/grey_image.h"
 #include "rig/spherical.h"
 
@@ -127,20 +128,21 @@ std::vector<double> apply_window(const std::vector<double>& x, const std::vector
 }
 }  // namespace
 
-std::string RingOptions::check() const {
-  std::ostringstream o;
-  if (!(min_elevation_deg >= -90 && max_elevation_deg <= 90 && min_elevation_deg < max_elevation_deg))
-    o << "ring band must satisfy -90 <= min_elevation_deg < max_elevation_deg <= 90; ";
-  if (!(axis_floor >= 0.0 && axis_floor <= 1.0)) o << "axis_floor must be in [0, 1]; ";
-  if (!(max_frequency_fraction > 0.0 && max_frequency_fraction <= 1.0))
-    o << "max_frequency_fraction must be in (0, 1]; ";
-  if (!(max_turn_deg_per_frame > 0.0 && max_turn_deg_per_frame < 180.0))
-    o << "max_turn_deg_per_frame must be in (0, 180); ";
-  if (frame_offsets.empty() || frame_offsets.front() != 1) o << "frame_offsets must start with 1; ";
-  for (int f : frame_offsets)
-    if (f < 1) o << "frame_offsets must be positive; ";
-  if (!(min_peak >= 0.0 && min_peak < 1.0)) o << "min_peak must be in [0, 1); ";
-  return o.str();
+void RingOptions::check() const {
+  const std::string s = "RingOptions.";
+  require_option(min_elevation_deg >= -90 && min_elevation_deg < max_elevation_deg, s + "min_elevation_deg",
+                 "must be in [-90, max_elevation_deg)", min_elevation_deg);
+  require_option(max_elevation_deg <= 90, s + "max_elevation_deg", "must be <= 90", max_elevation_deg);
+  require_option(axis_floor >= 0.0 && axis_floor <= 1.0, s + "axis_floor", "must be in [0, 1]", axis_floor);
+  require_option(max_frequency_fraction > 0.0 && max_frequency_fraction <= 1.0, s + "max_frequency_fraction",
+                 "must be in (0, 1]", max_frequency_fraction);
+  require_option(max_turn_deg_per_frame > 0.0 && max_turn_deg_per_frame < 180.0, s + "max_turn_deg_per_frame",
+                 "must be in (0, 180)", max_turn_deg_per_frame);
+  require_option(!frame_offsets.empty() && frame_offsets.front() == 1, s + "frame_offsets",
+                 "must start with 1",
+                 frame_offsets.empty() ? std::string("none") : std::to_string(frame_offsets.front()));
+  for (int f : frame_offsets) require_option(f >= 1, s + "frame_offsets", "must be positive", f);
+  require_option(min_peak >= 0.0 && min_peak < 1.0, s + "min_peak", "must be in [0, 1)", min_peak);
 }
 
 std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options) {
@@ -211,8 +213,7 @@ RingShift circular_phase_correlation(const std::vector<double>& a, const std::ve
 }
 
 RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options) {
-  const std::string problem = options.check();
-  if (!problem.empty()) throw Error("ring options: " + problem);
+  options.check();
   RingHeadings out;
   const int n = static_cast<int>(rings.size());
   out.headings.assign(n, 0.0);

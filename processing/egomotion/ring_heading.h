@@ -24,7 +24,7 @@ struct RingOptions {
   double min_peak = 0.05;                         // weaker correlation peaks are treated as failures
 
   // Empty when valid, otherwise what is wrong.
-  std::string check() const;
+  void check() const;  // throws Error naming the bad field
 };
 
 // Ring image of a BGR (CV_8UC3) or gray (CV_8U / CV_32F) equirectangular frame: one value per column.

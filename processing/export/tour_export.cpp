@@ -223,14 +223,13 @@ std::string plan_svg(const FloorPlan& plan) {
   return svg.str();
 }
 
-TourExportReport export_tour(const Project& project, const TourExportOptions& options,
-                             const ExportProgress& progress) {
+TourExportReport export_tour(const Project& project, const TourExportOptions& options, Progress& progress) {
   options.check();
   if (project.path.empty()) throw Error("export: the project has no camera path (track or import one first)");
   if (project.keyframes.empty()) throw Error("export: the project has no keyframes (run sampling first)");
   require_placed(project.path, "export");
   auto report_progress = [&](double fraction, const std::string& stage) {
-    if (progress && !progress(fraction, stage)) throw Error("export cancelled");
+    progress.checkpoint(fraction, stage);
   };
 
   TourExportReport report;
@@ -322,7 +321,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);
   report.package_bytes = package.write(options.output);
   report.keyframes = static_cast<int>(images.size());
-  report_progress(1.0, "done");
+  progress.report(1.0, "done");  // written: too late to cancel
   return report;
 }
 

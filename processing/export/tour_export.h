@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "model/project.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 
@@ -38,13 +39,11 @@ struct TourExportReport {
   std::vector<std::string> warnings;  // e.g. missing hotspot media
 };
 
-// Called with the fraction done and a short stage name; return false to cancel (export_tour then throws
-// Error("export cancelled") and leaves no partial package behind).
-using ExportProgress = std::function<bool(double fraction, const std::string& stage)>;
-
 // Throws Error with a clear message: no path or keyframes, unreadable frames, unwritable output, ...
+// Reports the fraction done and a short stage name; a cancel ends it with Cancelled and leaves no partial
+// package behind.
 TourExportReport export_tour(const Project& project, const TourExportOptions& options,
-                             const ExportProgress& progress = {});
+                             Progress& progress = null_progress());
 
 // The parts a tour.json holds, read back into a Project (plan lines, path, keyframes, cells, hotspots,
 // geo-anchor, title). For round-trip tests and for re-importing a published tour.

@@ -7,13 +7,13 @@
 #include <set>
 
 #include "model/error.h"
+#include "model/option_check.h"
 
 namespace plenopath {
 
-std::string DxfExportOptions::check() const {
-  if (units != "mm" && units != "cm" && units != "m")
-    return "units must be mm, cm or m (got '" + units + "')";
-  return {};
+void DxfExportOptions::check() const {
+  require_option(units == "mm" || units == "cm" || units == "m", "DxfExportOptions.units",
+                 "must be mm, cm or m", units);
 }
 
 namespace {
@@ -41,7 +41,11 @@ void write_polyline(DL_Dxf& dxf, DL_WriterA& dw, const DrawingPolyline& p, doubl
 }  // namespace
 
 void write_dxf(const PlanDrawing& d, const std::string& file, const DxfExportOptions& options) {
-  if (const std::string e = options.check(); !e.empty()) throw file_error(file, e);
+  try {
+    options.check();
+  } catch (const Error& e) {
+    throw file_error(file, e.what());
+  }
   for (const auto& ins : d.inserts)
     if (!d.find_block(ins.block)) throw file_error(file, "insert of unknown block '" + ins.block + "'");
   const Units u = units_of(options.units);

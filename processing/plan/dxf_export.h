@@ -11,7 +11,7 @@ namespace plenopath {
 
 struct DxfExportOptions {
   std::string units = "mm";  // "mm", "cm" or "m": the file's drawing units ($INSUNITS 4, 5 or 6)
-  std::string check() const;
+  void check() const;        // throws Error naming the bad field
 };
 
 // Throws Error naming the file when it cannot be written or the drawing refers to an unknown block.

@@ -55,8 +55,7 @@ Envelope envelope_from_depth(const cv::Mat& depth, const PathFrame& pose) {
 
 std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
                                                   const std::function<cv::Mat(int index)>& read_depth,
-                                                  const DepthSamplingOptions& options,
-                                                  const std::function<void(double)>& progress,
+                                                  const DepthSamplingOptions& options, Progress& progress,
                                                   PathEnvelopes* envelopes) {
   options.check();
   std::vector<DepthVolume> out;
@@ -76,7 +75,7 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
     }
     out.push_back(depth_volume(depth));
     if (envelopes) envelopes->frames[i] = envelope_from_depth(depth, path.frames[i]);
-    if (progress && (i % 16 == 0 || i + 1 == path.size())) progress(static_cast<double>(i + 1) / path.size());
+    if (i % 16 == 0 || i + 1 == path.size()) progress.checkpoint(static_cast<double>(i + 1) / path.size());
   }
   return out;
 }

@@ -34,11 +34,11 @@ Envelope envelope_from_depth(const cv::Mat& depth, const PathFrame& pose);
 
 // The volume of every path frame: read_depth(capture index) gives its depth map (CV_32F metres or CV_16U
 // millimetres, 0 = no hit; may throw Error). Also each frame's eye-level envelope when `envelopes` is
-// given. `progress` (optional) gets the fraction done and may throw.
+// given. `progress` gets the fraction done; a cancel ends it with Cancelled.
 std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
                                                   const std::function<cv::Mat(int index)>& read_depth,
                                                   const DepthSamplingOptions& options = {},
-                                                  const std::function<void(double)>& progress = {},
+                                                  Progress& progress = null_progress(),
                                                   PathEnvelopes* envelopes = nullptr);
 
 // Cells between significant changes: a change detected at frame k starts a new cell halfway between

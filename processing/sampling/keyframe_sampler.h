@@ -25,7 +25,7 @@ struct SamplingInputs {
   const PathEnvelopes* depth_envelopes = nullptr;  // depth: every frame's eye-level envelope (optional)
   const PathEnvelopes* envelopes = nullptr;        // visibility: every frame's envelope, if already computed
   const EnvelopeRaster* raster = nullptr;          // visibility: their raster, if already built
-  std::function<void(double)> progress;            // optional; may throw to cancel
+  Progress* progress = nullptr;                    // optional
   VisibilitySamplingOptions visibility;
   DepthSamplingOptions depth;
 };

@@ -25,8 +25,7 @@ double interval_loss(const EnvelopeRaster& raster, const std::vector<double>& s,
 
 std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<double>& s,
                                 std::vector<int> positions, const std::vector<bool>& fixed,
-                                const LossRefinementOptions& options,
-                                const std::function<void(double)>& progress) {
+                                const LossRefinementOptions& options, Progress& progress) {
   options.check();
   const int k = static_cast<int>(positions.size());
   auto spacing_ok = [&](int a, int c, int b) {
@@ -41,6 +40,8 @@ std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<
   for (int sweep = 0; sweep < options.sweeps; ++sweep) {
     bool moved = false;
     for (int j = 1; j + 1 < k; ++j) {
+      if (j % 16 == 0)
+        progress.checkpoint((sweep + static_cast<double>(j) / k) / std::max(options.sweeps, 1));
       if (fixed[j]) continue;
       const int a = positions[j - 1], b = positions[j + 1];
       if (b - a < 3) continue;
@@ -62,7 +63,7 @@ std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<
         moved = true;
       }
     }
-    if (progress) progress(static_cast<double>(sweep + 1) / std::max(options.sweeps, 1));
+    progress.checkpoint(static_cast<double>(sweep + 1) / std::max(options.sweeps, 1));
     if (!moved) break;
   }
   return positions;
@@ -108,8 +109,7 @@ std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<doub
 
 Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes,
                                    const std::vector<int>& pinned, const EnvelopeRaster& raster,
-                                   const LossRefinementOptions& options,
-                                   const std::function<void(double)>& progress) {
+                                   const LossRefinementOptions& options, Progress& progress) {
   if (raster.frames() != static_cast<int>(path.size()))
     throw Error("loss refinement: the envelope raster has " + std::to_string(raster.frames()) +
                 " frames, the path " + std::to_string(path.size()));

@@ -12,6 +12,7 @@
 #include "model/camera_path.h"
 #include "model/keyframes.h"
 #include "processing/sampling/envelope_raster.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 
@@ -28,11 +29,12 @@ struct LossRefinementOptions {
 double interval_loss(const EnvelopeRaster& raster, const std::vector<double>& arc_lengths, int a, int b);
 
 // positions: ascending positions in path.frames; fixed: same size, true = never moved (first, last, pinned).
-// Returns the improved positions (same count, ascending, fixed ones unchanged). `progress` may throw.
+// Returns the improved positions (same count, ascending, fixed ones unchanged). A cancel ends it with
+// Cancelled.
 std::vector<int> refine_by_loss(const EnvelopeRaster& raster, const std::vector<double>& arc_lengths,
                                 std::vector<int> positions, const std::vector<bool>& fixed,
                                 const LossRefinementOptions& options = {},
-                                const std::function<void(double)>& progress = {});
+                                Progress& progress = null_progress());
 
 // Progressive rank per keyframe: first and last, then the other fixed ones, then the reverse of backward
 // elimination by least added loss.
@@ -44,6 +46,6 @@ std::vector<int> loss_ranks(const EnvelopeRaster& raster, const std::vector<doub
 Keyframes refine_keyframes_by_loss(const CameraPath& path, const Keyframes& keyframes,
                                    const std::vector<int>& pinned, const EnvelopeRaster& raster,
                                    const LossRefinementOptions& options = {},
-                                   const std::function<void(double)>& progress = {});
+                                   Progress& progress = null_progress());
 
 }  // namespace plenopath

@@ -16,7 +16,7 @@
 namespace plenopath {
 
 PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraPath& path, int threads,
-                                     const std::function<void(double)>& progress) {
+                                     Progress& progress) {
   PathEnvelopes out;
   const int n = static_cast<int>(path.size());
   out.frames.resize(n);
@@ -24,9 +24,9 @@ PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraP
   parallel_for_each(n, threads, [&](int i) {
     out.frames[i] = index.envelope(path.frames[i].position());
     const int d = ++done;
-    if (progress && d % 64 == 0) progress(static_cast<double>(d) / n);
+    if (d % 64 == 0) progress.checkpoint(static_cast<double>(d) / n);
   });
-  if (progress) progress(1.0);
+  progress.checkpoint(1.0);
   return out;
 }
 

@@ -11,6 +11,7 @@
 
 #include "model/camera_path.h"
 #include "model/keyframes.h"
+#include "processing/util/progress.h"
 #include "processing/visibility/visibility.h"
 
 namespace plenopath {
@@ -19,10 +20,10 @@ namespace plenopath {
 struct PathEnvelopes {
   std::vector<Envelope> frames;  // one per path frame, same order
 };
-// threads: 0 = hardware concurrency, 1 = the calling thread only. `progress` (optional) gets the fraction
-// done, from worker threads too, and may throw to cancel.
+// threads: 0 = hardware concurrency, 1 = the calling thread only. `progress` gets the fraction done, from
+// worker threads too; a cancel ends it with Cancelled.
 PathEnvelopes compute_path_envelopes(const VisibilityIndex& index, const CameraPath& path, int threads = 0,
-                                     const std::function<void(double)>& progress = {});
+                                     Progress& progress = null_progress());
 
 // For each path frame, the position (in path.frames) of its stand-in: the keyframe nearest by arc length
 // (ties: the earlier one). A keyframe stands in for itself. Empty when there are no keyframes on the path.

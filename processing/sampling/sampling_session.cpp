@@ -24,10 +24,7 @@ SamplingSession::SamplingSession() : cache_(std::make_unique<Cache>()) {}
 SamplingSession::~SamplingSession() = default;
 
 SamplingOutcome SamplingSession::run(const Project& project, const SamplingRequest& request,
-                                     const std::function<void(double, const std::string&)>& progress_in) {
-  auto progress = [&](double f, const std::string& stage) {
-    if (progress_in) progress_in(f, stage);
-  };
+                                     Progress& progress) {
   const CameraPath& path = project.path;
   if (path.empty()) throw Error("the project has no camera path yet");
   Cache& c = *cache_;
@@ -44,16 +41,17 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
   }
   if (want_envelopes) {
     if (!c.index || c.walls != walls) {
-      progress(0.0, "building the visibility index");
+      progress.checkpoint(0.0, "building the visibility index");
       c.index = std::make_unique<VisibilityIndex>(project.plan);
       c.walls = walls;
       c.envelopes.reset();
       c.raster.reset();
     }
     if (!c.envelopes || !(c.envelope_path == path)) {
-      c.envelopes = std::make_unique<PathEnvelopes>(compute_path_envelopes(*c.index, path, 0, [&](double f) {
-        progress(0.05 + 0.45 * f, "envelopes of " + std::to_string(path.size()) + " frames");
-      }));
+      SubProgress envelopes_progress(progress, 0.05, 0.5,
+                                     "envelopes of " + std::to_string(path.size()) + " frames");
+      c.envelopes =
+          std::make_unique<PathEnvelopes>(compute_path_envelopes(*c.index, path, 0, envelopes_progress));
       c.envelope_path = path;
       c.raster.reset();
     }
@@ -67,16 +65,20 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
       throw Error("depth sampling needs depth maps: import the capture with its depth folder first");
     if (c.volumes.size() != path.size() || !(c.depth_capture == project.capture) || !(c.depth_path == path)) {
       const std::unique_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
-      c.volumes = depth_volumes_along_path(
+      SubProgress volumes_progress(progress, 0.0, 0.5,
+                                   "depth volumes of " + std::to_string(path.size()) + " frames");
+      // Into locals first: a cancel or an error half-way leaves the cache as it was.
+      PathEnvelopes depth_envelopes;
+      std::vector<DepthVolume> volumes = depth_volumes_along_path(
           path,
           [&](int index) {
             if (index < 0 || index >= source->frame_count() || !source->has_depth(index))
               throw Error(project.capture.depth_folder + ": no depth map for frame " + std::to_string(index));
             return source->read_depth(index);
           },
-          {},
-          [&](double f) { progress(0.5 * f, "depth volumes of " + std::to_string(path.size()) + " frames"); },
-          &c.depth_envelopes);
+          {}, volumes_progress, &depth_envelopes);
+      c.volumes = std::move(volumes);
+      c.depth_envelopes = std::move(depth_envelopes);
       c.depth_capture = project.capture;
       c.depth_path = path;
     }
@@ -93,7 +95,8 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
     inputs.envelopes = c.envelopes.get();
     inputs.raster = c.raster.get();
     inputs.visibility.rule = request.rule;
-    inputs.progress = [&](double f) { progress(0.5 + 0.4 * f, "placing keyframes"); };
+    SubProgress placing_progress(progress, 0.5, 0.9, "placing keyframes");
+    inputs.progress = &placing_progress;
     out.keyframes = sample_keyframes(inputs, request.parameters, request.pinned);
   } else {
     out.keyframes = request.keyframes;
@@ -105,11 +108,11 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
   out.loss.reduction_ratio = stats.ratio;
   out.loss.largest_gap_m = stats.max_gap_m;
   if (request.geometric_loss && c.envelopes && c.envelope_path == path) {
-    progress(0.9, "geometric loss");
+    progress.checkpoint(0.9, "geometric loss");
     out.loss.geometric = geometric_loss(path, out.keyframes, *c.envelopes);
     out.loss.has_geometric = true;
   }
-  progress(1.0, "done");
+  progress.report(1.0, "done");
   return out;
 }
 

@@ -37,9 +37,10 @@ class SamplingSession {
 
   // Throws plenopath::Error when the method's input is missing (visibility: the project's visibility cells
   // and a plan with walls; depth: the capture's depth maps) or the budget cannot be met. `progress` gets
-  // the fraction done and what is being done; it may throw to cancel.
+  // the fraction done and what is being done; a cancel ends the run with Cancelled and leaves the session's
+  // caches consistent (a part cancelled half-way is rebuilt by the next run).
   SamplingOutcome run(const Project& project, const SamplingRequest& request,
-                      const std::function<void(double, const std::string&)>& progress = {});
+                      Progress& progress = null_progress());
 
  private:
   struct Cache;

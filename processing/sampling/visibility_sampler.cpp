@@ -114,15 +114,12 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
     return k;
 
   // Refinement by the loss each keyframe position causes, on the rasterised envelopes of every frame.
-  auto report = [&](double from, double to) {
-    return [&inputs, from, to](double f) {
-      if (inputs.progress) inputs.progress(from + (to - from) * f);
-    };
-  };
+  Progress& progress = inputs.progress ? *inputs.progress : null_progress();
   PathEnvelopes computed;
   const PathEnvelopes* envelopes = inputs.envelopes;
   if (!envelopes || envelopes->frames.size() != path.size()) {
-    computed = compute_path_envelopes(*index, path, 0, report(0.0, 0.6));
+    SubProgress envelopes_progress(progress, 0.0, 0.6, "envelopes");
+    computed = compute_path_envelopes(*index, path, 0, envelopes_progress);
     envelopes = &computed;
   }
   std::unique_ptr<EnvelopeRaster> built;
@@ -135,8 +132,9 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
   refine.sweeps = options.refine_sweeps;
   refine.min_spacing_m = parameters.min_spacing_m;
   refine.max_spacing_m = parameters.max_spacing_m;
-  k = refine_keyframes_by_loss(path, k, pinned, *raster, refine, report(0.6, 0.95));
-  if (inputs.progress) inputs.progress(1.0);
+  SubProgress refine_progress(progress, 0.6, 0.95, "refining by loss");
+  k = refine_keyframes_by_loss(path, k, pinned, *raster, refine, refine_progress);
+  progress.checkpoint(1.0);
   return k;
 }
 

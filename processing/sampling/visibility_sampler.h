@@ -65,7 +65,7 @@ struct VisibilitySamplingInputs {
   const VisibilityIndex* index = nullptr;
   const PathEnvelopes* envelopes = nullptr;
   const EnvelopeRaster* raster = nullptr;
-  std::function<void(double)> progress;  // optional; may throw to cancel
+  Progress* progress = nullptr;  // optional
 };
 // Throws Error when what the rule needs is missing, and as place_keyframes does.
 Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingInputs& inputs,

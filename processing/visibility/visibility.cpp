@@ -171,8 +171,7 @@ void VisibilityIndex::areas_of_cell(const std::vector<Eigen::Vector2d>& points,
   *area_mean = integral / (s_end - s_begin);
 }
 
-VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
-                                                  const std::function<void(double)>& progress) const {
+VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path, Progress& progress) const {
   VisibilityCells result;
   if (path.frames.empty()) return result;
   require_placed(path, "visibility");
@@ -191,9 +190,8 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
   }
   const auto timing_start = std::chrono::steady_clock::now();
   // Progress: the windows take about 60 % of the time, the cells' envelopes the rest.
-  const std::vector<CriticalLine> windows =
-      vertex_windows(progress ? std::function<void(double)>([&](double f) { progress(0.6 * f); })
-                              : std::function<void(double)>());
+  SubProgress windows_progress(progress, 0.0, 0.6, "visibility windows");
+  const std::vector<CriticalLine> windows = vertex_windows(windows_progress);
   const bool timing = std::getenv("PLENOPATH_VISIBILITY_TIMING") != nullptr;
   auto lap = [&](const char* what) {
     if (timing)
@@ -261,7 +259,7 @@ VisibilityCells VisibilityIndex::cells_along_path(const CameraPath& path,
   if (options().cell_areas) {
     const int threads = std::min(resolve_thread_count(options().threads), static_cast<int>(tasks / 16) + 1);
     parallel_for_each(static_cast<int>(tasks), threads, [&](int i) {
-      if (progress) progress(0.6 + 0.4 * static_cast<double>(i) / tasks);
+      progress.checkpoint(0.6 + 0.4 * static_cast<double>(i) / tasks, i == 0 ? "visibility cells" : "");
       if (fast) {
         areas_of_cell(points, s_at, bounds[i], bounds[i + 1], &cell_mid[i], &cell_mean[i]);
       } else {

@@ -27,6 +27,7 @@
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
 #include "model/visibility_cells.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 
@@ -132,10 +133,9 @@ class VisibilityIndex {
   // cell's mean area comes from that one expansion's wedges in closed form; with the exact method
   // area_mean is area_mid, or Simpson's rule with one more envelope per event (area_mean_simpson). The
   // cells run on `threads` threads; the result does not depend on their number or timing.
-  // `progress` (optional) is called with the fraction done, from worker threads too; it may throw to cancel
+  // `progress` gets the fraction done, from worker threads too; a cancel ends it with Cancelled
   // (the exception reaches the caller once the workers have stopped, within a few envelope queries).
-  VisibilityCells cells_along_path(const CameraPath& path,
-                                   const std::function<void(double fraction)>& progress = {}) const;
+  VisibilityCells cells_along_path(const CameraPath& path, Progress& progress = null_progress()) const;
 
   // The segments CGAL sees after snapping and thickening (for display and for independent test oracles).
   std::vector<PlanSegment> effective_segments() const;
@@ -144,7 +144,7 @@ class VisibilityIndex {
 
  private:
   // Windows of every plan vertex's visibility polygon: the critical lines the events come from.
-  std::vector<CriticalLine> vertex_windows(const std::function<void(double fraction)>& progress = {}) const;
+  std::vector<CriticalLine> vertex_windows(Progress& progress = null_progress()) const;
   const VisibilityOptions& options() const;
   // The exact area by the unregularized CGAL class; -1 unless p is in free space.
   double exact_envelope_area(const Eigen::Vector2d& p) const;

@@ -432,7 +432,7 @@ std::vector<Eigen::Vector2d> VisibilityIndex::vertices() const {
 
 // For every vertex and every wedge of free space around it, the visibility polygon from the vertex; its
 // edges that lie on no wall are windows: crossing one changes whether the vertex is visible.
-std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<void(double)>& progress) const {
+std::vector<CriticalLine> VisibilityIndex::vertex_windows(Progress& progress) const {
   const Impl& impl = *impl_;
   std::vector<Arrangement::Halfedge_const_handle> wedges;
   for (auto v = impl.arr.vertices_begin(); v != impl.arr.vertices_end(); ++v) {
@@ -455,7 +455,7 @@ std::vector<CriticalLine> VisibilityIndex::vertex_windows(const std::function<vo
     try {
       auto& vis = impl.visibility_for_this_thread(&impl.triangular);
       for (std::size_t i = next++; i < wedges.size(); i = next++) {
-        if (progress && i % 16 == 0) progress(static_cast<double>(i) / wedges.size());
+        if (i % 16 == 0) progress.checkpoint(static_cast<double>(i) / wedges.size());
         const auto he = wedges[i];
         const Eigen::Vector2d v = to_eigen(he->target()->point());
         const auto polygon = impl.visibility_polygon(vis, he->target()->point(), he);

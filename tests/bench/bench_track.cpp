@@ -137,6 +137,10 @@ nlohmann::json run(const RunSpec& spec) {
   const double rss_before_mb = peak_rss_mb();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::pair<std::string, double>> stage_seconds;  // stage, when it started (from t0)
+  FunctionProgress progress([&](double, const std::string& stage) {
+    if (!stage.empty() && (stage_seconds.empty() || stage_seconds.back().first != stage))
+      stage_seconds.emplace_back(stage, seconds(t0));
+  });
   const EgomotionResult r = EgomotionTracker::run(
       static_cast<int>(truth.size()),
       [&](int i) {
@@ -145,12 +149,7 @@ nlohmann::json run(const RunSpec& spec) {
         (generated ? render_s : decode_s) += seconds(t);
         return m;
       },
-      options,
-      [&](const std::string& stage, double) {
-        if (stage_seconds.empty() || stage_seconds.back().first != stage)
-          stage_seconds.emplace_back(stage, seconds(t0));
-        return true;
-      });
+      options, progress);
   const double total_s = seconds(t0);
   // Seconds spent in each stage of finish() (the frames stage includes decoding; see seconds_frames_stage).
   nlohmann::json geometry_stages;

@@ -365,7 +365,7 @@ TEST(Studio, SamplingSliderChangesKeyframesAndUndoRestores) {
 }
 
 // A task that edits its snapshot slowly and checks for cancellation every 10 ms.
-widgets::TaskResult slow_task(Project project, widgets::TaskProgress& progress) {
+widgets::TaskResult slow_task(Project project, Progress& progress) {
   project.keyframes.indices = {1, 2, 3};
   project.tour.title = "changed by the task";
   for (int i = 0; i < 6000; ++i) {
@@ -383,6 +383,8 @@ TEST(Studio, CancelledTaskLeavesTheDocumentUnchanged) {
   widgets::TaskRunner runner(doc);
   const Project before = doc.project();
   QSignalSpy finished(&runner, &widgets::TaskRunner::finished);
+  QSignalSpy cancelled(&runner, &widgets::TaskRunner::cancelled);
+  QSignalSpy failed(&runner, &widgets::TaskRunner::failed);
   ASSERT_TRUE(runner.start("Slow", slow_task));
   EXPECT_FALSE(runner.start("Another", slow_task)) << "one task at a time";
 
@@ -402,6 +404,9 @@ TEST(Studio, CancelledTaskLeavesTheDocumentUnchanged) {
   EXPECT_LT(clock.elapsed(), 1000) << "cancel stops within a second";
   ASSERT_EQ(finished.count(), 1);
   EXPECT_FALSE(finished.at(0).at(0).toBool());
+  ASSERT_EQ(cancelled.count(), 1);
+  EXPECT_EQ(cancelled.at(0).at(0).toString(), "Slow");
+  EXPECT_EQ(failed.count(), 0) << "cancelled, not failed";
   EXPECT_EQ(doc.project(), before);
   EXPECT_EQ(doc.undo_stack()->count(), 0);
   EXPECT_FALSE(doc.is_modified());
@@ -415,15 +420,14 @@ TEST(Studio, TaskResultIsOneUndoStepAndErrorsArriveAsMessages) {
   const Project before = doc.project();
 
   QSignalSpy failed(&runner, &widgets::TaskRunner::failed);
-  runner.start("Broken", [](Project, widgets::TaskProgress&) -> widgets::TaskResult {
-    throw Error("broken.dxf: no geometry");
-  });
+  runner.start("Broken",
+               [](Project, Progress&) -> widgets::TaskResult { throw Error("broken.dxf: no geometry"); });
   runner.wait();
   ASSERT_EQ(failed.count(), 1);
   EXPECT_EQ(failed.at(0).at(1).toString(), "broken.dxf: no geometry");
   EXPECT_EQ(doc.project(), before);
 
-  runner.start("Quick", [](Project p, widgets::TaskProgress&) {
+  runner.start("Quick", [](Project p, Progress&) {
     p.tour.title = "quick";
     return widgets::TaskResult{std::move(p), widgets::kSettingsChanged};
   });

@@ -129,14 +129,23 @@ TEST(AnchorRefinement, HeadingAnchorsAreHonoured) {
   EXPECT_LT(report.residuals[1].heading_error_deg, 2.0);
 }
 
-TEST(AnchorRefinement, CancelReturnsThePathUnchanged) {
+// Cancelled at its first report (the solver's first iteration): Cancelled, the report untouched, and the
+// caller's path is all it has (nothing refined comes back).
+TEST(AnchorRefinement, CancelAfterTheFirstReportEndsWithCancelled) {
   const CameraPath truth = truth_walk(300);
   const CameraPath drift = drifted(truth, 0.05 * M_PI / 180.0, 1.1);
   AnchorRefinementReport report;
-  const CameraPath out =
-      refine_path_with_anchors(drift, anchors_at(truth, {0, 299}), {}, &report, [](int) { return false; });
-  EXPECT_TRUE(report.cancelled);
-  EXPECT_EQ(out, drift);
+  report.iterations = -7;
+  int reports = 0;
+  FunctionProgress progress([&](double, const std::string&) {
+    ++reports;
+    progress.cancel();
+  });
+  EXPECT_THROW(refine_path_with_anchors(drift, anchors_at(truth, {0, 299}), {}, &report, progress),
+               Cancelled);
+  EXPECT_EQ(reports, 1);
+  EXPECT_EQ(report.iterations, -7);
+  EXPECT_TRUE(report.residuals.empty());
 }
 
 TEST(AnchorRefinement, BadInputGetsClearErrors) {
@@ -178,10 +187,10 @@ TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
   for (std::size_t i = 0; i < truth.frames.size(); i += 20)
     gps.push_back(
         {truth.frames[i].index, truth.frames[i].position() + Eigen::Vector2d(noise(rng), noise(rng)), 1.5});
-  const CameraPath clean = refine_path_with_anchors(drift, {}, {}, nullptr, {}, gps);
+  const CameraPath clean = refine_path_with_anchors(drift, {}, {}, nullptr, null_progress(), gps);
   gps[5].plan_xy += Eigen::Vector2d(30, 0);
   gps[20].plan_xy += Eigen::Vector2d(0, -30);
-  const CameraPath refined = refine_path_with_anchors(drift, {}, {}, nullptr, {}, gps);
+  const CameraPath refined = refine_path_with_anchors(drift, {}, {}, nullptr, null_progress(), gps);
   auto rms = [&](const CameraPath& p) {
     double sum = 0;
     for (std::size_t i = 0; i < truth.frames.size(); ++i)
@@ -197,7 +206,7 @@ TEST(AnchorRefinement, GpsFixesAreWeakRobustPriors) {
   EXPECT_LT(after, 1.5);
   EXPECT_LT(std::abs(after - without_outliers), 0.3);  // the robust loss ignores the outliers
   // One fix is not enough to place a path.
-  EXPECT_THROW(refine_path_with_anchors(drift, {}, {}, nullptr, {}, {gps[0]}), Error);
+  EXPECT_THROW(refine_path_with_anchors(drift, {}, {}, nullptr, null_progress(), {gps[0]}), Error);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <opencv2/video/tracking.hpp>
 #include <vector>
 
+#include "model/error.h"
+
 namespace plenopath {
 namespace {
 
@@ -121,7 +123,7 @@ TEST(AffinePatch, RefusesWhatItCannotAlign) {
   EXPECT_FALSE(align_affine_patch(patch, other, &warp, options)) << "an unrelated image";
   AffinePatchOptions bad;
   bad.window_px = 20;
-  EXPECT_FALSE(bad.check().empty());
+  EXPECT_THROW(bad.check(), Error);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -158,13 +159,17 @@ TEST(Egomotion, ShortRenderedWalkAgainstGroundTruth) {
   EgomotionOptions options;
   options.camera_height_m = 1.6;
   std::vector<std::string> stages;
+  std::vector<double> fractions;
+  FunctionProgress progress([&](double f, const std::string& stage) {
+    fractions.push_back(f);
+    if (!stage.empty() && (stages.empty() || stages.back() != stage)) stages.push_back(stage);
+  });
   const EgomotionResult r = EgomotionTracker::run(
-      static_cast<int>(walk.frames.size()), [&](int i) { return walk.frames[i]; }, options,
-      [&](const std::string& stage, double) {
-        if (stages.empty() || stages.back() != stage) stages.push_back(stage);
-        return true;
-      });
-  ASSERT_FALSE(r.cancelled);
+      static_cast<int>(walk.frames.size()), [&](int i) { return walk.frames[i]; }, options, progress);
+  // One progress for the whole run: never backwards, from the first frame to the end.
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_NEAR(fractions.back(), 1.0, 1e-12);
   ASSERT_EQ(r.path.size(), walk.frames.size());
   const PathErrors e = evaluate_path(r.path, walk.truth);
   EXPECT_EQ(e.frames_matched, 60);
@@ -276,10 +281,36 @@ TEST(Egomotion, TurnOnTheSpotKeepsOneScale) {
 TEST(Egomotion, CancelDuringRefinementStopsCleanly) {
   const Walk& walk = short_walk();
   EgomotionOptions options;
-  const EgomotionResult r = EgomotionTracker::run(
-      40, [&](int i) { return walk.frames[i]; }, options,
-      [&](const std::string& stage, double) { return stage != "refinement"; });
-  EXPECT_TRUE(r.cancelled);
+  std::vector<std::string> stages_after_cancel;
+  FunctionProgress progress([&](double, const std::string& stage) {
+    if (progress.is_cancelled()) stages_after_cancel.push_back(stage);
+    if (stage.find("refinement") != std::string::npos) progress.cancel();
+  });
+  EXPECT_THROW(EgomotionTracker::run(
+                   40, [&](int i) { return walk.frames[i]; }, options, progress),
+               Cancelled);
+  // It stopped inside the refinement: no later stage (resection) was reached.
+  for (const std::string& s : stages_after_cancel) EXPECT_EQ(s.find("resection"), std::string::npos) << s;
+}
+
+// Cancelled right after its first report (while reading frames), the run ends with Cancelled at once.
+TEST(Egomotion, CancelAfterTheFirstReportEndsTheRun) {
+  const Walk& walk = short_walk();
+  int reads = 0, reports = 0;
+  FunctionProgress progress([&](double, const std::string&) {
+    ++reports;
+    progress.cancel();
+  });
+  EXPECT_THROW(EgomotionTracker::run(
+                   40,
+                   [&](int i) {
+                     ++reads;
+                     return walk.frames[i];
+                   },
+                   EgomotionOptions{}, progress),
+               Cancelled);
+  EXPECT_EQ(reports, 1);
+  EXPECT_EQ(reads, 1) << "the first report comes after frame 0; nothing more is read";
 }
 
 TEST(Egomotion, StopsAndBlankFramesAreFlaggedNotSilentlyUsed) {
@@ -349,7 +380,12 @@ TEST(Egomotion, AMovingCrowdIsFlagged) {
 TEST(Egomotion, BadOptionsAndInputsAreReported) {
   EgomotionOptions options;
   options.keyframe_parallax_deg = -1;
-  EXPECT_FALSE(options.check().empty());
+  try {
+    options.check();
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "EgomotionOptions.keyframe_parallax_deg must be > 0, got -1");
+  }
   EXPECT_THROW(EgomotionTracker{options}, Error);
   EgomotionTracker tracker{EgomotionOptions{}};
   EXPECT_THROW(tracker.finish(), Error);                               // no frames

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "model/error.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "rig/synthetic_camera.h"
@@ -89,15 +90,20 @@ TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
 
 TEST(LoopClosure, OptionsAreChecked) {
   LoopClosureOptions o;
-  EXPECT_TRUE(o.check().empty());
+  EXPECT_NO_THROW(o.check());
   o.min_travel_steps = 1;
-  EXPECT_FALSE(o.check().empty());
+  EXPECT_THROW(o.check(), Error);
   o = {};
   o.ratio = 1.5;
-  EXPECT_FALSE(o.check().empty());
+  EXPECT_THROW(o.check(), Error);
   EgomotionOptions e;
   e.loop.descriptor_stride = 0;
-  EXPECT_NE(e.check().find("loop"), std::string::npos);
+  try {
+    e.check();
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(), "LoopClosureOptions.descriptor_stride must be >= 1, got 0");
+  }
 }
 
 }  // namespace

@@ -10,7 +10,9 @@
 #include <random>
 
 #include "model/camera_path.h"
+#include "model/error.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "processing/util/progress.h"
 
 namespace plenopath {
 namespace {
@@ -85,8 +87,7 @@ TEST(PathRefinement, ThinnedGlobalPassReachesTheFullOne) {
     const std::size_t total = s.problem.observations.size();
     RefinementOptions options;
     options.global_max_observations = thin ? static_cast<int>(total / 4) : 0;
-    const RefinementReport report = refine_bundle(s.problem, options);
-    EXPECT_FALSE(report.cancelled);
+    EXPECT_NO_THROW(refine_bundle(s.problem, options));  // not cancelled
     // Every observation that was not an outlier is back in the problem, thinned or not.
     EXPECT_GT(s.problem.observations.size(), total * 9 / 10);
     ate[thin] = ate_m(s.problem.poses, s.truth_poses);
@@ -98,11 +99,24 @@ TEST(PathRefinement, ThinnedGlobalPassReachesTheFullOne) {
   EXPECT_LT(ate[1], 2.0 * ate[0] + 0.001);
 }
 
+// Cancelled at its first report (Ceres' first iteration), the refinement stops the solver and ends with
+// Cancelled after that one iteration, not after the dozens it needs.
+TEST(PathRefinement, CancelAfterTheFirstReportStopsTheSolver) {
+  Synthetic s = make_problem(7);
+  int reports = 0;
+  FunctionProgress progress([&](double, const std::string&) {
+    ++reports;
+    progress.cancel();
+  });
+  EXPECT_THROW(refine_bundle(s.problem, RefinementOptions{}, progress), Cancelled);
+  EXPECT_EQ(reports, 1);
+}
+
 TEST(PathRefinement, OptionsAreChecked) {
   RefinementOptions o;
-  EXPECT_TRUE(o.check().empty());
+  EXPECT_NO_THROW(o.check());
   o.global_max_observations = -1;
-  EXPECT_FALSE(o.check().empty());
+  EXPECT_THROW(o.check(), Error);
 }
 
 }  // namespace

@@ -260,10 +260,26 @@ TEST_F(TourExportTest, CancelLeavesNoPackage) {
   options.max_size = 128;
   options.preview_size = 64;
   int calls = 0;
-  EXPECT_THROW(export_tour(*project_, options, [&](double, const std::string&) { return ++calls < 3; }),
-               Error);
+  FunctionProgress progress([&](double, const std::string&) {
+    if (++calls >= 3) progress.cancel();
+  });
+  EXPECT_THROW(export_tour(*project_, options, progress), Cancelled);
+  EXPECT_EQ(calls, 3) << "stopped at the report that saw the cancel";
   EXPECT_FALSE(fs::exists(options.output));
   EXPECT_FALSE(fs::exists(options.output + ".partial"));
+}
+
+TEST_F(TourExportTest, CancelAfterTheFirstReportWritesNoZip) {
+  TourExportOptions options;
+  options.output = (*dir_ / "cancelled.zip").string();
+  int calls = 0;
+  FunctionProgress progress([&](double, const std::string&) {
+    ++calls;
+    progress.cancel();
+  });
+  EXPECT_THROW(export_tour(*project_, options, progress), Cancelled);
+  EXPECT_EQ(calls, 1);
+  EXPECT_FALSE(fs::exists(options.output));
 }
 
 TEST_F(TourExportTest, ClearErrors) {

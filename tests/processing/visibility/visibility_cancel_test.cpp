@@ -1,11 +1,14 @@
-// cells_along_path reports progress and stops when its callback throws (the studio's Cancel).
+// cells_along_path reports progress and stops with Cancelled when its Progress is cancelled (the studio's
+// Cancel, Ctrl+C on the command line).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <mutex>
-#include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "processing/util/progress.h"
 #include "processing/visibility/visibility.h"
 
 namespace plenopath {
@@ -34,35 +37,52 @@ CameraPath diagonal_path(double length, int frames) {
   return path;
 }
 
-TEST(VisibilityCancel, ProgressIsReportedAndAThrowStopsTheWork) {
+TEST(VisibilityCancel, ProgressIsReportedAndACancelStopsTheWork) {
   const FloorPlan plan = pillar_hall(12);
   const VisibilityIndex index(plan);
   const CameraPath path = diagonal_path(18.0, 400);
 
-  std::mutex mutex;
   double lowest = 2, highest = -1;
   int calls = 0;
-  const VisibilityCells full = index.cells_along_path(path, [&](double f) {
-    std::lock_guard<std::mutex> lock(mutex);
+  std::vector<std::string> stages;
+  FunctionProgress progress([&](double f, const std::string& stage) {  // one call at a time
     lowest = std::min(lowest, f);
     highest = std::max(highest, f);
     ++calls;
+    if (!stage.empty()) stages.push_back(stage);
   });
+  const VisibilityCells full = index.cells_along_path(path, progress);
   EXPECT_GT(calls, 3);
   EXPECT_GE(lowest, 0.0);
   EXPECT_LE(highest, 1.0);
   EXPECT_GT(highest, 0.6);  // the cells' envelopes report too
   EXPECT_GT(full.cells.size(), 10u);
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "visibility windows"), stages.end());
 
+  // Cancelled at the third report (from the worker threads): Cancelled reaches the caller.
   std::atomic<int> seen{0};
   const auto t0 = std::chrono::steady_clock::now();
-  EXPECT_THROW(index.cells_along_path(path,
-                                      [&](double) {
-                                        if (++seen > 2) throw std::runtime_error("cancelled");
-                                      }),
-               std::runtime_error);
+  FunctionProgress cancelling([&](double, const std::string&) {
+    if (++seen > 2) cancelling.cancel();
+  });
+  EXPECT_THROW(index.cells_along_path(path, cancelling), Cancelled);
   const double cancelled_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("visibility: %d progress calls; a cancel returned after %.3f s\n", calls, cancelled_s);
+}
+
+// Cancelled at the first report: Cancelled, and nothing after it (one thread, so the count is exact).
+TEST(VisibilityCancel, CancelAfterTheFirstReport) {
+  VisibilityOptions one_thread;
+  one_thread.threads = 1;
+  const VisibilityIndex index(pillar_hall(6), one_thread);
+  const CameraPath path = diagonal_path(10.0, 100);
+  std::atomic<int> seen{0};
+  FunctionProgress progress([&](double, const std::string&) {
+    ++seen;
+    progress.cancel();
+  });
+  EXPECT_THROW(index.cells_along_path(path, progress), Cancelled);
+  EXPECT_EQ(seen.load(), 1);
 }
 
 }  // namespace
