@@ -26,13 +26,23 @@ bool operator==(const VisibilityCells& l, const VisibilityCells& r) {
 }
 
 bool operator==(const SamplingParameters& l, const SamplingParameters& r) {
-  return std::tie(l.method, l.count, l.ratio, l.exponent, l.transition_boost, l.min_spacing_m,
-                  l.max_spacing_m) == std::tie(r.method, r.count, r.ratio, r.exponent, r.transition_boost,
-                                               r.min_spacing_m, r.max_spacing_m);
+  return std::tie(l.method, l.rule, l.count, l.ratio, l.exponent, l.transition_boost, l.min_spacing_m,
+                  l.max_spacing_m) == std::tie(r.method, r.rule, r.count, r.ratio, r.exponent,
+                                               r.transition_boost, r.min_spacing_m, r.max_spacing_m);
+}
+bool operator==(const SamplerSettings& l, const SamplerSettings& r) {
+  const auto tie = [](const SamplerSettings& s) {
+    return std::tie(s.expected_loss.probe_spacing_m, s.expected_loss.loss_power,
+                    s.expected_loss.density_floor, s.refinement.applied, s.refinement.sweeps,
+                    s.refinement.raster_cell_m, s.cell_rule.transition_window_m, s.cell_rule.min_size,
+                    s.depth_changes.log_ratio_threshold, s.depth_changes.use_mean_range,
+                    s.depth_changes.min_coverage, s.depth_changes.max_depth_width);
+  };
+  return tie(l) == tie(r);
 }
 bool operator==(const Keyframes& l, const Keyframes& r) {
-  return std::tie(l.indices, l.rank, l.pinned, l.parameters) ==
-         std::tie(r.indices, r.rank, r.pinned, r.parameters);
+  return std::tie(l.indices, l.rank, l.pinned, l.parameters, l.sampler) ==
+         std::tie(r.indices, r.rank, r.pinned, r.parameters, r.sampler);
 }
 std::vector<int> Keyframes::progressive_order() const {
   std::vector<std::size_t> order(indices.size());
@@ -46,16 +56,19 @@ std::vector<int> Keyframes::progressive_order() const {
   return frames;
 }
 
-const char* to_string(HotspotKind kind) {
-  return kind == HotspotKind::kMovieTexture ? "movie_texture" : "event";
-}
-HotspotKind hotspot_kind_from_string(const std::string& text) {
-  if (text == "movie_texture") return HotspotKind::kMovieTexture;
-  if (text == "event") return HotspotKind::kEvent;
-  throw Error("unknown hotspot kind '" + text + "' (expected movie_texture or event)");
-}
-bool hotspot_action_uses_media(const std::string& action) {
-  return action == "swap_image" || action == "play_video" || action == "play_sound";
+bool hotspot_action_uses_media(HotspotAction action) {
+  switch (action) {
+    case HotspotAction::kSwapImage:
+    case HotspotAction::kPlayVideo:
+    case HotspotAction::kPlaySound:
+      return true;
+    case HotspotAction::kNone:
+    case HotspotAction::kJump:
+    case HotspotAction::kOpenUrl:
+    case HotspotAction::kShowText:
+      return false;
+  }
+  return false;
 }
 bool operator==(const Hotspot& l, const Hotspot& r) {
   return std::tie(l.id, l.kind, l.title, l.media, l.frame, l.image_corners, l.world_corners, l.trigger,

@@ -16,20 +16,16 @@ nlohmann::json hotspot_to_json(const Hotspot& h) {
           {"frame", h.frame},
           {"image_corners_deg", image},
           {"world_corners", world},
-          {"trigger", h.trigger},
+          {"trigger", to_string(h.trigger)},
           {"trigger_distance_m", h.trigger_distance_m},
-          {"action", h.action},
+          {"action", to_string(h.action)},
           {"action_target", h.action_target}};
 }
 
 Hotspot hotspot_from_json(const JsonReader& j) {
   Hotspot h;
   h.id = j.string("id");
-  try {
-    h.kind = hotspot_kind_from_string(j.string("kind"));
-  } catch (const Error& e) {
-    j.at("kind").fail(e.what());
-  }
+  h.kind = enum_from_json<HotspotKind>(j.at("kind"));
   h.title = j.string_or("title", "");
   h.media = j.string_or("media", "");
   h.frame = j.integer_or("frame", -1);
@@ -45,9 +41,9 @@ Hotspot hotspot_from_json(const JsonReader& j) {
       if (c.size() != 3) c.fail("expected [x, y, z]");
       h.world_corners.emplace_back(c.at(0).number(), c.at(1).number(), c.at(2).number());
     }
-  h.trigger = j.string_or("trigger", "click");
+  h.trigger = enum_from_json(j, "trigger", HotspotTrigger::kClick);
   h.trigger_distance_m = j.number_or("trigger_distance_m", 0.0);
-  h.action = j.string_or("action", "");
+  h.action = enum_from_json(j, "action", HotspotAction::kNone);
   h.action_target = j.string_or("action_target", "");
   return h;
 }

@@ -1,14 +1,13 @@
 #pragma once
 // Hotspots: movie textures (media warped onto a planar quad) and events (a region that reacts).
+// HotspotKind, HotspotTrigger and HotspotAction are defined in resources/schema/enums.json (model/enums.h).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
-namespace plenopath {
+#include "model/enums.h"
 
-enum class HotspotKind { kMovieTexture, kEvent };
-const char* to_string(HotspotKind kind);
-HotspotKind hotspot_kind_from_string(const std::string& text);
+namespace plenopath {
 
 struct Hotspot {
   std::string id;
@@ -20,13 +19,13 @@ struct Hotspot {
   std::vector<Eigen::Vector2d> image_corners;
   // The same corners lifted to the plan frame (x, y, z metres; z up from the floor), when known.
   std::vector<Eigen::Vector3d> world_corners;
-  std::string trigger = "click";  // click | proximity
+  HotspotTrigger trigger = HotspotTrigger::kClick;  // events: click, or walking within the distance
   double trigger_distance_m = 0.0;
-  std::string action;         // swap_image | play_video | play_sound | jump | open_url | show_text
+  HotspotAction action = HotspotAction::kNone;  // events: what a trigger does
   std::string action_target;  // media file (absolute in memory, like media), frame index, URL or text
 };
 // True for the actions whose target is a media file (swap_image, play_video, play_sound).
-bool hotspot_action_uses_media(const std::string& action);
+bool hotspot_action_uses_media(HotspotAction action);
 bool operator==(const Hotspot& l, const Hotspot& r);
 
 }  // namespace plenopath

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "model/anchors_io.h"
 #include "model/atomic_file.h"
@@ -178,17 +179,67 @@ VisibilityCells visibility_from_json(const JsonReader& r) {
 
 json keyframes_to_json(const Keyframes& k) {
   const SamplingParameters& p = k.parameters;
+  const SamplerSettings& s = k.sampler;
   return {{"indices", k.indices},
           {"rank", k.rank},
           {"pinned", k.pinned},
           {"parameters",
-           {{"method", p.method},
+           {{"method", to_string(p.method)},
+            {"rule", to_string(p.rule)},
             {"count", p.count},
             {"ratio", p.ratio},
             {"exponent", p.exponent},
             {"transition_boost", p.transition_boost},
             {"min_spacing_m", p.min_spacing_m},
-            {"max_spacing_m", p.max_spacing_m}}}};
+            {"max_spacing_m", p.max_spacing_m}}},
+          {"sampler",
+           {{"expected_loss",
+             {{"probe_spacing_m", s.expected_loss.probe_spacing_m},
+              {"loss_power", s.expected_loss.loss_power},
+              {"density_floor", s.expected_loss.density_floor}}},
+            {"refinement",
+             {{"applied", s.refinement.applied},
+              {"sweeps", s.refinement.sweeps},
+              {"raster_cell_m", s.refinement.raster_cell_m}}},
+            {"cell_rule",
+             {{"transition_window_m", s.cell_rule.transition_window_m}, {"min_size", s.cell_rule.min_size}}},
+            {"depth_changes",
+             {{"log_ratio_threshold", s.depth_changes.log_ratio_threshold},
+              {"use_mean_range", s.depth_changes.use_mean_range},
+              {"min_coverage", s.depth_changes.min_coverage},
+              {"max_depth_width", s.depth_changes.max_depth_width}}}}}};
+}
+
+// Version 1 files record neither the rule nor the sampler's settings: they read as the defaults of that
+// version (rule expected_loss; the samplers' default settings, with the refinement the method applied by
+// default: expected_loss and depth refined by loss).
+SamplerSettings sampler_settings_from_json(const std::optional<JsonReader>& r, const SamplingParameters& p) {
+  SamplerSettings s;
+  s.refinement.applied = p.method != SamplingMethod::kUniform &&
+                         !(p.method == SamplingMethod::kVisibility && p.rule == VisibilityRule::cell_rule);
+  if (!r) return s;
+  if (auto e = r->find("expected_loss")) {
+    s.expected_loss.probe_spacing_m = e->number_or("probe_spacing_m", s.expected_loss.probe_spacing_m);
+    s.expected_loss.loss_power = e->number_or("loss_power", s.expected_loss.loss_power);
+    s.expected_loss.density_floor = e->number_or("density_floor", s.expected_loss.density_floor);
+  }
+  if (auto e = r->find("refinement")) {
+    s.refinement.applied = e->boolean_or("applied", s.refinement.applied);
+    s.refinement.sweeps = e->integer_or("sweeps", s.refinement.sweeps);
+    s.refinement.raster_cell_m = e->number_or("raster_cell_m", s.refinement.raster_cell_m);
+  }
+  if (auto e = r->find("cell_rule")) {
+    s.cell_rule.transition_window_m = e->number_or("transition_window_m", s.cell_rule.transition_window_m);
+    s.cell_rule.min_size = e->number_or("min_size", s.cell_rule.min_size);
+  }
+  if (auto e = r->find("depth_changes")) {
+    DepthChangeSettings& d = s.depth_changes;
+    d.log_ratio_threshold = e->number_or("log_ratio_threshold", d.log_ratio_threshold);
+    d.use_mean_range = e->boolean_or("use_mean_range", d.use_mean_range);
+    d.min_coverage = e->number_or("min_coverage", d.min_coverage);
+    d.max_depth_width = e->integer_or("max_depth_width", d.max_depth_width);
+  }
+  return s;
 }
 
 std::vector<int> read_int_list(const JsonReader& r) {
@@ -206,7 +257,8 @@ Keyframes keyframes_from_json(const JsonReader& r) {
     r.at("rank").fail("must have one entry per keyframe index");
   if (auto p = r.find("parameters")) {
     SamplingParameters& s = k.parameters;
-    s.method = p->string_or("method", s.method);
+    s.method = enum_from_json(*p, "method", s.method);
+    s.rule = enum_from_json(*p, "rule", s.rule);
     s.count = p->integer_or("count", s.count);
     s.ratio = p->number_or("ratio", s.ratio);
     s.exponent = p->number_or("exponent", s.exponent);
@@ -214,6 +266,7 @@ Keyframes keyframes_from_json(const JsonReader& r) {
     s.min_spacing_m = p->number_or("min_spacing_m", s.min_spacing_m);
     s.max_spacing_m = p->number_or("max_spacing_m", s.max_spacing_m);
   }
+  k.sampler = sampler_settings_from_json(r.find("sampler"), k.parameters);
   return k;
 }
 

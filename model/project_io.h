@@ -8,7 +8,9 @@
 
 namespace plenopath {
 
-constexpr int kProjectFormatVersion = 1;
+// 2: keyframes record the visibility rule and the sampler's settings; enums are checked by name. Version 1
+// files still load.
+constexpr int kProjectFormatVersion = 2;
 constexpr const char* kProjectFormatName = "plenopath-project";
 
 // Throws Error naming the file and, for bad content, the JSON path of the bad value.

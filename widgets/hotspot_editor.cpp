@@ -229,8 +229,8 @@ void HotspotEditor::create_from_pending() {
   h.frame = document_.frame_index_at(position);
   for (const auto& c : pending_) h.image_corners.push_back({c.azimuth, c.elevation});
   if (h.kind == HotspotKind::kEvent) {
-    h.trigger = "click";
-    h.action = "show_text";
+    h.trigger = HotspotTrigger::kClick;
+    h.action = HotspotAction::kShowText;
   }
 
   QString placement;

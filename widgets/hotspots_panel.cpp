@@ -27,27 +27,25 @@ namespace plenopath::widgets {
 
 namespace {
 
-// Actions as stored (model/hotspots.h) and as shown.
-const std::vector<std::pair<const char*, const char*>> kActions{
-    {"", "(none)"},
-    {"swap_image", "Swap for another image or image sequence"},
-    {"play_video", "Play a video"},
-    {"play_sound", "Play a sound"},
-    {"jump", "Jump to a frame or tour"},
-    {"open_url", "Open a web address"},
-    {"show_text", "Show text"},
-};
-
-QString target_hint(const std::string& action) {
-  if (action == "swap_image")
-    return QObject::tr(
-        "image shown instead of the region, or a video of an image sequence (played once, then "
-        "held; `plenopath encode-video` makes one from frames)");
-  if (action == "play_video") return QObject::tr("video file (empty: the movie texture's own video)");
-  if (action == "play_sound") return QObject::tr("sound file");
-  if (action == "jump") return QObject::tr("frame number, or another tour's http(s) address");
-  if (action == "open_url") return QObject::tr("http(s) address");
-  if (action == "show_text") return QObject::tr("text shown as plain text");
+QString target_hint(HotspotAction action) {
+  switch (action) {
+    case HotspotAction::kSwapImage:
+      return QObject::tr(
+          "image shown instead of the region, or a video of an image sequence (played once, then "
+          "held; `plenopath encode-video` makes one from frames)");
+    case HotspotAction::kPlayVideo:
+      return QObject::tr("video file (empty: the movie texture's own video)");
+    case HotspotAction::kPlaySound:
+      return QObject::tr("sound file");
+    case HotspotAction::kJump:
+      return QObject::tr("frame number, or another tour's http(s) address");
+    case HotspotAction::kOpenUrl:
+      return QObject::tr("http(s) address");
+    case HotspotAction::kShowText:
+      return QObject::tr("text shown as plain text");
+    case HotspotAction::kNone:
+      break;
+  }
   return QString();
 }
 
@@ -90,15 +88,14 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
     label->setWordWrap(true);
   }
   warning_text_->setStyleSheet("color: #b05a00");
-  kind_->addItem(tr("Movie texture"), "movie_texture");
-  kind_->addItem(tr("Event"), "event");
-  trigger_->addItem(tr("Click"), "click");
-  trigger_->addItem(tr("Walk within a distance"), "proximity");
+  // Kinds, triggers and actions as resources/schema/enums.json lists them; item data: the name in files.
+  for (const auto& n : EnumInfo<HotspotKind>::names) kind_->addItem(tr(n.label), QString(n.id));
+  for (const auto& n : EnumInfo<HotspotTrigger>::names) trigger_->addItem(tr(n.label), QString(n.id));
   distance_->setRange(0.0, 100.0);
   distance_->setDecimals(1);
   distance_->setSingleStep(0.5);
   distance_->setSuffix(" m");
-  for (const auto& [value, label] : kActions) action_->addItem(tr(label), QString(value));
+  for (const auto& n : EnumInfo<HotspotAction>::names) action_->addItem(tr(n.label), QString(n.id));
   list_->setObjectName("hotspot_list");
   title_->setObjectName("hotspot_title");
   media_->setObjectName("hotspot_media");
@@ -186,8 +183,9 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   });
   connect(kind_, QOverload<int>::of(&QComboBox::activated), this, [this](int index) {
     edit_selected("kind", [&](Hotspot& h) {
-      h.kind = index == 0 ? HotspotKind::kMovieTexture : HotspotKind::kEvent;
-      if (h.kind == HotspotKind::kEvent && h.action.empty()) h.action = "show_text";
+      h.kind = enum_from_string<HotspotKind>(kind_->itemData(index).toString().toStdString());
+      if (h.kind == HotspotKind::kEvent && h.action == HotspotAction::kNone)
+        h.action = HotspotAction::kShowText;
     });
   });
   connect(media_, &QLineEdit::textEdited, this, [this](const QString& text) {
@@ -201,16 +199,17 @@ HotspotsPanel::HotspotsPanel(ProjectDocument& document, HotspotEditor& editor, Q
   });
   connect(trigger_, QOverload<int>::of(&QComboBox::activated), this, [this](int index) {
     edit_selected("trigger", [&](Hotspot& h) {
-      h.trigger = trigger_->itemData(index).toString().toStdString();
-      if (h.trigger == "proximity" && !(h.trigger_distance_m > 0)) h.trigger_distance_m = 2.0;
+      h.trigger = enum_from_string<HotspotTrigger>(trigger_->itemData(index).toString().toStdString());
+      if (h.trigger == HotspotTrigger::kProximity && !(h.trigger_distance_m > 0)) h.trigger_distance_m = 2.0;
     });
   });
   connect(distance_, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this](double value) {
     edit_selected("distance", [&](Hotspot& h) { h.trigger_distance_m = value; });
   });
   connect(action_, QOverload<int>::of(&QComboBox::activated), this, [this](int index) {
-    edit_selected("action",
-                  [&](Hotspot& h) { h.action = action_->itemData(index).toString().toStdString(); });
+    edit_selected("action", [&](Hotspot& h) {
+      h.action = enum_from_string<HotspotAction>(action_->itemData(index).toString().toStdString());
+    });
   });
   connect(target_, &QLineEdit::textEdited, this, [this](const QString& text) {
     edit_selected("target", [&](Hotspot& h) { h.action_target = text.toStdString(); });
@@ -299,15 +298,12 @@ void HotspotsPanel::show_selected() {
     return;
   }
   set_text(title_, QString::fromStdString(h->title));
-  kind_->setCurrentIndex(h->kind == HotspotKind::kMovieTexture ? 0 : 1);
+  kind_->setCurrentIndex(kind_->findData(QString(to_string(h->kind))));
   set_text(media_, QString::fromStdString(h->media));
-  trigger_->setCurrentIndex(h->trigger == "proximity" ? 1 : 0);
+  trigger_->setCurrentIndex(trigger_->findData(QString(to_string(h->trigger))));
   distance_->setValue(h->trigger_distance_m);
-  distance_->setEnabled(h->kind == HotspotKind::kEvent && h->trigger == "proximity");
-  int action_index = 0;
-  for (int i = 0; i < action_->count(); ++i)
-    if (action_->itemData(i).toString().toStdString() == h->action) action_index = i;
-  action_->setCurrentIndex(action_index);
+  distance_->setEnabled(h->kind == HotspotKind::kEvent && h->trigger == HotspotTrigger::kProximity);
+  action_->setCurrentIndex(action_->findData(QString(to_string(h->action))));
   for (QWidget* w : std::initializer_list<QWidget*>{trigger_, action_, target_})
     w->setEnabled(h->kind == HotspotKind::kEvent);
   set_text(target_, QString::fromStdString(h->action_target));

@@ -101,11 +101,11 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
       statistics_(new QLabel(this)),
       progress_timer_(new QTimer(this)),
       worker_(std::make_unique<Worker>()) {
-  // Item data: the method, and for visibility the rule after a colon.
-  method_->addItem(tr("Uniform by arc length"), "uniform");
-  method_->addItem(tr("Visibility: least expected loss"), "visibility");
+  // Item data: the method's name (model/enums.h), and ":cells" for the visibility cell rule.
+  method_->addItem(tr("Uniform by arc length"), QString(to_string(SamplingMethod::kUniform)));
+  method_->addItem(tr("Visibility: least expected loss"), QString(to_string(SamplingMethod::kVisibility)));
   method_->addItem(tr("Visibility: cells, l^k / v (seed)"), "visibility:cells");
-  method_->addItem(tr("Depth: volume changes"), "depth");
+  method_->addItem(tr("Depth: volume changes"), QString(to_string(SamplingMethod::kDepth)));
   method_->setToolTip(
       tr("How keyframes are chosen along the path. Visibility needs the visibility cells "
          "(Process > Compute visibility); depth needs the capture's depth maps."));
@@ -180,7 +180,10 @@ void SamplingPanel::wait() {
 
 SamplingParameters SamplingPanel::parameters() const {
   SamplingParameters p = document_.project().keyframes.parameters;
-  p.method = method_->currentData().toString().section(':', 0, 0).toStdString();
+  const QString data = method_->currentData().toString();
+  p.method = enum_from_string<SamplingMethod>(data.section(':', 0, 0).toStdString());
+  if (p.method == SamplingMethod::kVisibility)
+    p.rule = data == "visibility:cells" ? VisibilityRule::cell_rule : VisibilityRule::expected_loss;
   p.count = 0;
   p.ratio = ratio_of_slider(budget_->value());
   p.exponent = exponent_->value() / 10.0;
@@ -190,12 +193,12 @@ SamplingParameters SamplingPanel::parameters() const {
 
 void SamplingPanel::show_parameters(const SamplingParameters& p) {
   showing_ = true;
-  // The document stores "visibility" without the rule: keep the rule the author picked here.
-  const QString current = method_->currentData().toString();
-  if (!(p.method == "visibility" && current.startsWith("visibility"))) {
-    const int method = method_->findData(QString::fromStdString(p.method));
-    method_->setCurrentIndex(method >= 0 ? method : 0);
-  }
+  // The document records the method and, for visibility, the rule.
+  const QString shown = p.method == SamplingMethod::kVisibility && p.rule == VisibilityRule::cell_rule
+                            ? QString("visibility:cells")
+                            : QString(to_string(p.method));
+  const int method = method_->findData(shown);
+  method_->setCurrentIndex(method >= 0 ? method : 0);
   budget_->setValue(slider_of_ratio(p.ratio));
   exponent_->setValue(static_cast<int>(std::lround(p.exponent * 10)));
   boost_->setValue(static_cast<int>(std::lround(p.transition_boost * 10)));
@@ -226,7 +229,7 @@ void SamplingPanel::resample(int merge_session) {
   if (p.path.empty()) return;
   const SamplingParameters parameters = this->parameters();
   message_.clear();
-  if (parameters.method == "uniform") {
+  if (parameters.method == SamplingMethod::kUniform) {
     // Fast (no geometry): at once, so a slider drag follows the hand; the loss follows on the worker.
     Keyframes keyframes;
     try {
@@ -243,12 +246,12 @@ void SamplingPanel::resample(int merge_session) {
       document_.undo_stack()->push(new SetKeyframesCommand(document_, std::move(keyframes), merge_session));
     return;
   }
-  if (parameters.method == "visibility" && p.visibility.empty()) {
+  if (parameters.method == SamplingMethod::kVisibility && p.visibility.empty()) {
     message_ = tr("Visibility sampling needs the visibility cells: run Process > Compute visibility first.");
     update_statistics();
     return;
   }
-  if (parameters.method == "depth" && (p.capture.empty() || p.capture.depth_folder.empty())) {
+  if (parameters.method == SamplingMethod::kDepth && (p.capture.empty() || p.capture.depth_folder.empty())) {
     message_ = tr("Depth sampling needs the capture's depth maps: import the capture with its depth folder.");
     update_statistics();
     return;
@@ -256,8 +259,6 @@ void SamplingPanel::resample(int merge_session) {
   Job job;
   job.snapshot = p;
   job.request.parameters = parameters;
-  job.request.rule = method_->currentData().toString() == "visibility:cells" ? VisibilityRule::cell_rule
-                                                                             : VisibilityRule::expected_loss;
   job.request.pinned = p.keyframes.pinned;
   job.merge_session = merge_session;
   start(std::move(job));

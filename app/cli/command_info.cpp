@@ -48,7 +48,8 @@ nlohmann::json summarize(const Project& p, const std::string& file) {
             {"scale_source", p.path.scale_source}}},
           {"anchors", p.anchors.size()},
           {"visibility", {{"events", p.visibility.events.size()}, {"cells", p.visibility.cells.size()}}},
-          {"keyframes", {{"count", p.keyframes.indices.size()}, {"method", p.keyframes.parameters.method}}},
+          {"keyframes",
+           {{"count", p.keyframes.indices.size()}, {"method", to_string(p.keyframes.parameters.method)}}},
           {"hotspots", p.hotspots.size()},
           {"hotspot_warnings", hotspot_warnings(p)},
           {"geo_anchor", p.geo.valid}};

@@ -31,8 +31,9 @@ struct Options {
   std::string plan, path, capture, depth, project;
   DxfImportOptions import;
   bool save = false;
-  SamplingParameters parameters;
-  std::string rule = "expected_loss";
+  SamplingParameters parameters;  // method and rule set from `method` and `rule` before run()
+  std::string method;
+  std::string rule = to_string(VisibilityRule::expected_loss);
   std::vector<int> pinned;
   int photometric_frames = 20;
   bool json = false;
@@ -69,7 +70,7 @@ int run(const Options& o, CLI::App* sub) {
   if (path.empty()) throw Error(where + ": the camera path has no frames");
   std::unique_ptr<VisibilityIndex> index;
   if (!plan.occluder_segments().empty()) index = std::make_unique<VisibilityIndex>(plan);
-  if (o.parameters.method == "visibility" && !index)
+  if (o.parameters.method == SamplingMethod::kVisibility && !index)
     throw Error((o.plan.empty() ? where : o.plan) +
                 ": visibility sampling needs a floor plan with walls (give --plan PLAN.dxf)");
 
@@ -91,7 +92,7 @@ int run(const Options& o, CLI::App* sub) {
     try {
       source = FrameSource::open_capture(project.capture);
     } catch (const Error& e) {
-      if (o.parameters.method == "depth") throw;
+      if (o.parameters.method == SamplingMethod::kDepth) throw;
       std::cerr << "plenopath sample: warning: " << e.what() << " (no photometric loss)\n";
     }
   }
@@ -105,9 +106,8 @@ int run(const Options& o, CLI::App* sub) {
   SamplingInputs inputs;
   inputs.path = &path;
   inputs.index = index.get();
-  inputs.visibility.rule = visibility_rule_from_string(o.rule);
   VisibilityCells cells;
-  if (o.parameters.method == "visibility" && inputs.visibility.rule == VisibilityRule::cell_rule) {
+  if (o.parameters.method == SamplingMethod::kVisibility && o.parameters.rule == VisibilityRule::cell_rule) {
     SubProgress cells_progress(progress, 0.0, 0.3, "visibility cells");
     cells = from_project && !project.visibility.empty() && o.plan.empty()
                 ? project.visibility
@@ -116,7 +116,7 @@ int run(const Options& o, CLI::App* sub) {
   }
   std::vector<DepthVolume> volumes;
   PathEnvelopes depth_envelopes;
-  if (o.parameters.method == "depth") {
+  if (o.parameters.method == SamplingMethod::kDepth) {
     if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
     if (source->depth_match_count() == 0)
       throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
@@ -178,7 +178,7 @@ int run(const Options& o, CLI::App* sub) {
   }
 
   const std::vector<int> order = keyframes.progressive_order();
-  nlohmann::json out = {{"method", keyframes.parameters.method},
+  nlohmann::json out = {{"method", to_string(keyframes.parameters.method)},
                         {"frames", path.size()},
                         {"budget", keyframe_budget(o.parameters, static_cast<int>(path.size()))},
                         {"keyframes", order},
@@ -187,8 +187,9 @@ int run(const Options& o, CLI::App* sub) {
                         {"largest_gap_m", loss.largest_gap_m},
                         {"geometric_loss", nullptr},
                         {"photometric_loss", nullptr}};
-  if (keyframes.parameters.method == "visibility") out["rule"] = o.rule;
-  if (keyframes.parameters.method != "uniform") {
+  if (keyframes.parameters.method == SamplingMethod::kVisibility)
+    out["rule"] = to_string(keyframes.parameters.rule);
+  if (keyframes.parameters.method != SamplingMethod::kUniform) {
     out["exponent"] = o.parameters.exponent;
     out["boost"] = o.parameters.transition_boost;
   }
@@ -204,7 +205,7 @@ int run(const Options& o, CLI::App* sub) {
     std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return kExitOk;
   }
-  std::cout << std::fixed << std::setprecision(3) << "Method     " << keyframes.parameters.method
+  std::cout << std::fixed << std::setprecision(3) << "Method     " << to_string(keyframes.parameters.method)
             << "\nKept       " << loss.kept << " of " << loss.total << " frames (" << std::setprecision(1)
             << loss.reduction_ratio << " : 1), largest gap " << std::setprecision(2) << loss.largest_gap_m
             << " m\n";
@@ -227,7 +228,6 @@ int run(const Options& o, CLI::App* sub) {
 
 Command add_sample_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
-  o->parameters.method = "";
   o->parameters.exponent =
       CellRuleOptions{}.exponent;  // measured best in the plan (cell_rule.h), not the seed's 3
   CLI::App* sub = parent.add_subcommand(
@@ -245,9 +245,14 @@ Command add_sample_command(CLI::App& parent) {
   auto* project = sub->add_option("--project", o->project, "Project file: plan, path and capture from it");
   project->excludes(path)->excludes(capture);
   sub->add_flag("--save", o->save, "Write the keyframes into the project (--project)");
-  sub->add_option("--method", o->parameters.method, "uniform, visibility or depth")
+  auto names = [](const auto& table) {
+    std::vector<std::string> out;
+    for (const auto& n : table) out.push_back(n.id);
+    return out;
+  };
+  sub->add_option("--method", o->method, "uniform, visibility or depth")
       ->required()
-      ->check(CLI::IsMember({"uniform", "visibility", "depth"}));
+      ->check(CLI::IsMember(names(EnumInfo<SamplingMethod>::names)));
   auto* count = sub->add_option("--count", o->parameters.count, "Budget: number of keyframes")
                     ->check(CLI::PositiveNumber);
   auto* ratio =
@@ -261,7 +266,7 @@ Command add_sample_command(CLI::App& parent) {
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--rule", o->rule,
                   "Visibility rule: expected_loss (default) or cell_rule (the seed's l^e / v)")
-      ->check(CLI::IsMember({"expected_loss", "cell_rule"}));
+      ->check(CLI::IsMember(names(EnumInfo<VisibilityRule>::names)));
   sub->add_option("--pin", o->pinned, "Frames always kept (capture indices)")->delimiter(',');
   sub->add_option("--min-spacing", o->parameters.min_spacing_m, "Minimum metres between keyframes")
       ->check(CLI::NonNegativeNumber);
@@ -278,6 +283,8 @@ Command add_sample_command(CLI::App& parent) {
               return kExitUsage;
             }
             if (count->count() > 0) o->parameters.ratio = 1.0;  // unused with a count
+            o->parameters.method = enum_from_string<SamplingMethod>(o->method);
+            o->parameters.rule = enum_from_string<VisibilityRule>(o->rule);
             return run(*o, sub);
           }};
 }

@@ -164,46 +164,56 @@ std::vector<HotspotWarning> validate_hotspot(const Hotspot& h, const Project& pr
     add(out, h, "title", "the title contains markup; it is shown as plain text, not interpreted");
 
   if (h.kind == HotspotKind::kEvent) {
-    if (h.trigger != "click" && h.trigger != "proximity")
-      add(out, h, "trigger", "unknown trigger '" + h.trigger + "' (click or proximity)");
-    if (h.trigger == "proximity" && !(h.trigger_distance_m > 0))
+    if (h.trigger == HotspotTrigger::kProximity && !(h.trigger_distance_m > 0))
       add(out, h, "trigger_distance_m", "a proximity trigger needs a distance > 0");
     const std::string& t = h.action_target;
-    if (h.action == "swap_image") {
-      // An image, or a video standing for an image sequence (`plenopath encode-video` makes one from frames).
-      const std::string problem = media_problem(t, "visual", options.decode_media);
-      if (!problem.empty()) add(out, h, "action_target", "swap image: " + problem);
-    } else if (h.action == "play_video") {
-      // A movie texture's own video plays in place; otherwise the target is the video.
-      if (!(t.empty() && media_type_of(h.media) == "video")) {
-        const std::string problem = media_problem(t, "video", options.decode_media);
-        if (!problem.empty()) add(out, h, "action_target", "play video: " + problem);
+    switch (h.action) {
+      case HotspotAction::kSwapImage: {
+        // An image, or a video standing for an image sequence (`plenopath encode-video` makes one from
+        // frames).
+        const std::string problem = media_problem(t, "visual", options.decode_media);
+        if (!problem.empty()) add(out, h, "action_target", "swap image: " + problem);
+        break;
       }
-    } else if (h.action == "play_sound") {
-      const std::string problem = media_problem(t, "audio", false);
-      if (!problem.empty()) add(out, h, "action_target", "play sound: " + problem);
-    } else if (h.action == "jump") {
-      static const std::regex number(R"(\s*[0-9]+\s*)");
-      static const std::regex url(R"(https?://\S+)", std::regex::icase);
-      if (std::regex_match(t, number)) {
-        if (!project.path.empty() && !frame_with_index(project.path, std::stoi(t)))
-          add(out, h, "action_target", "jump: frame " + t + " is not on the camera path");
-      } else if (!std::regex_match(t, url)) {
-        add(out, h, "action_target",
-            "jump: the target must be a frame number or another tour's http(s) address");
+      case HotspotAction::kPlayVideo:
+        // A movie texture's own video plays in place; otherwise the target is the video.
+        if (!(t.empty() && media_type_of(h.media) == "video")) {
+          const std::string problem = media_problem(t, "video", options.decode_media);
+          if (!problem.empty()) add(out, h, "action_target", "play video: " + problem);
+        }
+        break;
+      case HotspotAction::kPlaySound: {
+        const std::string problem = media_problem(t, "audio", false);
+        if (!problem.empty()) add(out, h, "action_target", "play sound: " + problem);
+        break;
       }
-    } else if (h.action == "open_url") {
-      static const std::regex url(R"(https?://\S+)", std::regex::icase);
-      if (!std::regex_match(t, url))
-        add(out, h, "action_target", "open URL: only http and https links open: '" + t + "'");
-    } else if (h.action == "show_text") {
-      if (t.empty()) add(out, h, "action_target", "show text: the text is empty");
-      if (text_has_markup(t))
-        add(out, h, "action_target", "the text contains markup; it is shown as plain text, not interpreted");
-    } else if (h.action.empty()) {
-      add(out, h, "action", "an event hotspot without an action does nothing");
-    } else {
-      add(out, h, "action", "unknown action '" + h.action + "'");
+      case HotspotAction::kJump: {
+        static const std::regex number(R"(\s*[0-9]+\s*)");
+        static const std::regex url(R"(https?://\S+)", std::regex::icase);
+        if (std::regex_match(t, number)) {
+          if (!project.path.empty() && !frame_with_index(project.path, std::stoi(t)))
+            add(out, h, "action_target", "jump: frame " + t + " is not on the camera path");
+        } else if (!std::regex_match(t, url)) {
+          add(out, h, "action_target",
+              "jump: the target must be a frame number or another tour's http(s) address");
+        }
+        break;
+      }
+      case HotspotAction::kOpenUrl: {
+        static const std::regex url(R"(https?://\S+)", std::regex::icase);
+        if (!std::regex_match(t, url))
+          add(out, h, "action_target", "open URL: only http and https links open: '" + t + "'");
+        break;
+      }
+      case HotspotAction::kShowText:
+        if (t.empty()) add(out, h, "action_target", "show text: the text is empty");
+        if (text_has_markup(t))
+          add(out, h, "action_target",
+              "the text contains markup; it is shown as plain text, not interpreted");
+        break;
+      case HotspotAction::kNone:
+        add(out, h, "action", "an event hotspot without an action does nothing");
+        break;
     }
   }
   return out;

@@ -125,14 +125,19 @@ Keyframes sample_by_depth(const CameraPath& path, const std::vector<DepthVolume>
   const std::vector<SamplingCell> cells = sampling_cells_from_depth(path, volumes, options);
   Keyframes k =
       place_keyframes(path, cell_rule_density(cells, path.length(), options.cells), parameters, pinned);
-  k.parameters.method = "depth";
+  k.parameters.method = SamplingMethod::kDepth;
+  k.sampler.cell_rule = {options.cells.transition_window_m, options.cells.min_size};
+  k.sampler.depth_changes = {options.changes.log_ratio_threshold, options.changes.use_mean_range,
+                             options.changes.min_coverage, options.max_depth_width};
   if (!options.refine_by_loss || !eye_level || eye_level->frames.size() != path.size()) return k;
   const EnvelopeRaster raster(*eye_level, options.raster_cell_m);
   LossRefinementOptions refine;
   refine.sweeps = options.refine_sweeps;
   refine.min_spacing_m = parameters.min_spacing_m;
   refine.max_spacing_m = parameters.max_spacing_m;
-  return refine_keyframes_by_loss(path, k, pinned, raster, refine);
+  k = refine_keyframes_by_loss(path, k, pinned, raster, refine);
+  k.sampler.refinement = {true, options.refine_sweeps, raster.cell_m()};
+  return k;
 }
 
 }  // namespace plenopath

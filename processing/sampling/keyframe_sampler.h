@@ -30,7 +30,7 @@ struct SamplingInputs {
   DepthSamplingOptions depth;
 };
 
-// parameters.method picks the sampler. Throws plenopath::Error for an unknown method, a method whose input
+// parameters.method (and .rule) pick the sampler. Throws plenopath::Error for a method whose input
 // is missing (saying what to compute first), or a budget that cannot be met.
 Keyframes sample_keyframes(const SamplingInputs& inputs, const SamplingParameters& parameters,
                            const std::vector<int>& pinned = {});

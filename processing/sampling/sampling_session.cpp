@@ -28,13 +28,14 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
   const CameraPath& path = project.path;
   if (path.empty()) throw Error("the project has no camera path yet");
   Cache& c = *cache_;
-  const std::string method = request.sample ? request.parameters.method : request.keyframes.parameters.method;
+  const SamplingMethod method =
+      request.sample ? request.parameters.method : request.keyframes.parameters.method;
 
   // The plan's visibility: index, every frame's envelope, their raster (visibility sampling, geometric loss).
   const std::vector<PlanSegment> walls = project.plan.occluder_segments();
   const bool want_envelopes =
-      !walls.empty() && (request.geometric_loss || (request.sample && method == "visibility"));
-  if (request.sample && method == "visibility") {
+      !walls.empty() && (request.geometric_loss || (request.sample && method == SamplingMethod::kVisibility));
+  if (request.sample && method == SamplingMethod::kVisibility) {
     if (project.visibility.empty())
       throw Error("visibility sampling needs the visibility cells: run Process > Compute visibility first");
     if (walls.empty()) throw Error("visibility sampling needs a plan with walls (a layer that blocks sight)");
@@ -55,12 +56,12 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
       c.envelope_path = path;
       c.raster.reset();
     }
-    if (!c.raster && request.sample && method == "visibility")
+    if (!c.raster && request.sample && method == SamplingMethod::kVisibility)
       c.raster = std::make_unique<EnvelopeRaster>(*c.envelopes);
   }
 
   // Depth volumes along the path (depth sampling).
-  if (request.sample && method == "depth") {
+  if (request.sample && method == SamplingMethod::kDepth) {
     if (project.capture.empty() || project.capture.depth_folder.empty())
       throw Error("depth sampling needs depth maps: import the capture with its depth folder first");
     if (c.volumes.size() != path.size() || !(c.depth_capture == project.capture) || !(c.depth_path == path)) {
@@ -94,7 +95,6 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
     inputs.depth_envelopes = &c.depth_envelopes;
     inputs.envelopes = c.envelopes.get();
     inputs.raster = c.raster.get();
-    inputs.visibility.rule = request.rule;
     SubProgress placing_progress(progress, 0.5, 0.9, "placing keyframes");
     inputs.progress = &placing_progress;
     out.keyframes = sample_keyframes(inputs, request.parameters, request.pinned);

@@ -15,8 +15,7 @@
 namespace plenopath {
 
 struct SamplingRequest {
-  SamplingParameters parameters;
-  VisibilityRule rule = VisibilityRule::expected_loss;
+  SamplingParameters parameters;  // the method and, for visibility, the rule
   std::vector<int> pinned;
   bool sample = true;          // false: only measure the loss of `keyframes`
   Keyframes keyframes;         // measured when sample is false

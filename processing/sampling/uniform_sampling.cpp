@@ -49,7 +49,7 @@ Keyframes sample_uniform_by_arc_length(const CameraPath& path, const SamplingPar
                                        const std::vector<int>& pinned) {
   Keyframes result;
   result.parameters = parameters;
-  result.parameters.method = "uniform";
+  result.parameters.method = SamplingMethod::kUniform;
   result.pinned = pinned;
   const int n = static_cast<int>(path.size());
   const int budget = keyframe_budget(parameters, n);

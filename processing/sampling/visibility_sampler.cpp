@@ -11,16 +11,6 @@
 
 namespace plenopath {
 
-const char* to_string(VisibilityRule rule) {
-  return rule == VisibilityRule::cell_rule ? "cell_rule" : "expected_loss";
-}
-
-VisibilityRule visibility_rule_from_string(const std::string& text) {
-  if (text == "cell_rule" || text == "cells" || text == "paper") return VisibilityRule::cell_rule;
-  if (text == "expected_loss" || text == "loss") return VisibilityRule::expected_loss;
-  throw Error("sampling: unknown visibility rule '" + text + "' (cell_rule or expected_loss)");
-}
-
 void VisibilitySamplingOptions::check() const {
   cells.check();
   if (!(probe_spacing_m > 0.0)) throw Error("sampling: probe spacing must be > 0 m");
@@ -99,7 +89,7 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
   options.check();
   check_sampling_parameters(parameters);
   DensityProfile density;
-  if (options.rule == VisibilityRule::cell_rule) {
+  if (parameters.rule == VisibilityRule::cell_rule) {
     if (!cells || cells->cells.empty())
       throw Error("visibility sampling: no visibility cells along the path (compute visibility first)");
     density =
@@ -109,8 +99,13 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
     density = expected_loss_density(path, *index, options);
   }
   Keyframes k = place_keyframes(path, density, parameters, pinned);
-  k.parameters.method = "visibility";
-  if (options.rule != VisibilityRule::expected_loss || !options.refine_by_loss || k.indices.size() < 3)
+  k.parameters.method = SamplingMethod::kVisibility;
+  if (parameters.rule == VisibilityRule::cell_rule) {
+    k.sampler.cell_rule = {options.cells.transition_window_m, options.cells.min_size};
+  } else {
+    k.sampler.expected_loss = {options.probe_spacing_m, options.loss_power, options.density_floor};
+  }
+  if (parameters.rule != VisibilityRule::expected_loss || !options.refine_by_loss || k.indices.size() < 3)
     return k;
 
   // Refinement by the loss each keyframe position causes, on the rasterised envelopes of every frame.
@@ -134,6 +129,7 @@ Keyframes sample_by_visibility(const CameraPath& path, const VisibilitySamplingI
   refine.max_spacing_m = parameters.max_spacing_m;
   SubProgress refine_progress(progress, 0.6, 0.95, "refining by loss");
   k = refine_keyframes_by_loss(path, k, pinned, *raster, refine, refine_progress);
+  k.sampler.refinement = {true, options.refine_sweeps, raster->cell_m()};  // the cell as used (may be grown)
   progress.checkpoint(1.0);
   return k;
 }

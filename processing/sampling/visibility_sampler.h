@@ -24,12 +24,9 @@
 
 namespace plenopath {
 
-enum class VisibilityRule { cell_rule, expected_loss };
-const char* to_string(VisibilityRule rule);
-VisibilityRule visibility_rule_from_string(const std::string& text);  // throws Error on an unknown name
-
+// The rule is SamplingParameters::rule (VisibilityRule, model/keyframes.h); the sampler records these options
+// in the keyframes it makes (Keyframes::sampler).
 struct VisibilitySamplingOptions {
-  VisibilityRule rule = VisibilityRule::expected_loss;
   // cell_rule: window and size floor (exponent and boost come from SamplingParameters).
   CellRuleOptions cells;
   // expected_loss: metres between envelope probes along the path.

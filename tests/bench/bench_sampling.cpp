@@ -146,20 +146,20 @@ int main(int argc, char** argv) {
 
   struct Variant {
     std::string name;
-    std::string method;
+    SamplingMethod method;
     VisibilityRule rule;
     double exponent;
     double boost;
   };
   std::vector<Variant> variants = {
-      {"uniform", "uniform", VisibilityRule::expected_loss, 3.0, 1.0},
-      {"visibility", "visibility", VisibilityRule::expected_loss, 3.0, 1.0},
-      {"visibility_density_only", "visibility", VisibilityRule::expected_loss, 3.0, 1.0},
-      {"visibility_cell_rule_e3", "visibility", VisibilityRule::cell_rule, 3.0, 1.0},
-      {"visibility_cell_rule_e3_no_boost", "visibility", VisibilityRule::cell_rule, 3.0, 0.0},
-      {"depth", "depth", VisibilityRule::expected_loss, 1.0, 1.0},
-      {"depth_cell_rule_only", "depth", VisibilityRule::expected_loss, 1.0, 1.0},
-      {"depth_cell_rule_only_e3", "depth", VisibilityRule::expected_loss, 3.0, 1.0},
+      {"uniform", SamplingMethod::kUniform, VisibilityRule::expected_loss, 3.0, 1.0},
+      {"visibility", SamplingMethod::kVisibility, VisibilityRule::expected_loss, 3.0, 1.0},
+      {"visibility_density_only", SamplingMethod::kVisibility, VisibilityRule::expected_loss, 3.0, 1.0},
+      {"visibility_cell_rule_e3", SamplingMethod::kVisibility, VisibilityRule::cell_rule, 3.0, 1.0},
+      {"visibility_cell_rule_e3_no_boost", SamplingMethod::kVisibility, VisibilityRule::cell_rule, 3.0, 0.0},
+      {"depth", SamplingMethod::kDepth, VisibilityRule::expected_loss, 1.0, 1.0},
+      {"depth_cell_rule_only", SamplingMethod::kDepth, VisibilityRule::expected_loss, 1.0, 1.0},
+      {"depth_cell_rule_only_e3", SamplingMethod::kDepth, VisibilityRule::expected_loss, 3.0, 1.0},
   };
   if (quick) variants.resize(variants.size() - 3);  // no depth
   std::map<std::string, double> mean_at_50;
@@ -168,10 +168,10 @@ int main(int argc, char** argv) {
     for (const Variant& v : variants) {
       SamplingParameters p;
       p.method = v.method;
+      p.rule = v.rule;
       p.ratio = ratio;
       p.exponent = v.exponent;
       p.transition_boost = v.boost;
-      inputs.visibility.rule = v.rule;
       inputs.visibility.refine_by_loss = v.name != "visibility_density_only";
       inputs.depth.refine_by_loss = v.name.rfind("depth_cell_rule_only", 0) != 0;
       const auto t = Clock::now();
@@ -196,10 +196,10 @@ int main(int argc, char** argv) {
   for (const Variant& v : variants) {
     SamplingParameters p;
     p.method = v.method;
+    p.rule = v.rule;
     p.ratio = 50.0;
     p.exponent = v.exponent;
     p.transition_boost = v.boost;
-    inputs.visibility.rule = v.rule;
     inputs.visibility.refine_by_loss = v.name != "visibility_density_only";
     inputs.depth.refine_by_loss = v.name.rfind("depth_cell_rule_only", 0) != 0;
     const Keyframes full = sample_keyframes(inputs, p);
@@ -232,11 +232,11 @@ int main(int argc, char** argv) {
     in.index = scene.index.get();
     in.cells = &scene.cells;
     in.envelopes = &scene.envelopes;
-    in.visibility.rule = VisibilityRule::cell_rule;
     for (double boost : {0.0, 1.0})
       for (double e : exponents) {
         SamplingParameters p;
-        p.method = "visibility";
+        p.method = SamplingMethod::kVisibility;
+        p.rule = VisibilityRule::cell_rule;
         p.ratio = 50.0;
         p.exponent = e;
         p.transition_boost = boost;
@@ -245,10 +245,10 @@ int main(int argc, char** argv) {
       }
     SamplingParameters p;
     p.ratio = 50.0;
-    p.method = "uniform";
+    p.method = SamplingMethod::kUniform;
     (*into)["uniform"] = geometric_loss(scene.path, sample_keyframes(in, p), scene.envelopes).mean;
-    p.method = "visibility";
-    in.visibility.rule = VisibilityRule::expected_loss;
+    p.method = SamplingMethod::kVisibility;
+    p.rule = VisibilityRule::expected_loss;
     (*into)["expected_loss"] = geometric_loss(scene.path, sample_keyframes(in, p), scene.envelopes).mean;
   };
   nlohmann::json exponent_sweep;

@@ -73,9 +73,14 @@ Project make_full_project(const fs::path& dir) {
   p.keyframes.indices = {0, 2};
   p.keyframes.rank = {0, 1};
   p.keyframes.pinned = {2};
-  p.keyframes.parameters.method = "uniform";
+  p.keyframes.parameters.method = SamplingMethod::kVisibility;
+  p.keyframes.parameters.rule = VisibilityRule::cell_rule;
   p.keyframes.parameters.count = 2;
   p.keyframes.parameters.exponent = 2.0;
+  p.keyframes.sampler.cell_rule = {0.75, 0.02};
+  p.keyframes.sampler.expected_loss.loss_power = 0.6;
+  p.keyframes.sampler.refinement = {true, 4, 0.12};
+  p.keyframes.sampler.depth_changes = {0.3, true, 0.4, 512};
   Hotspot h;
   h.id = "tv";
   h.kind = HotspotKind::kEvent;
@@ -84,9 +89,9 @@ Project make_full_project(const fs::path& dir) {
   h.frame = 1;
   h.image_corners = {{0.1, 0.2}, {0.3, 0.2}, {0.3, -0.1}, {0.1, -0.1}};
   h.world_corners = {{1, 2, 1.5}, {2, 2, 1.5}, {2, 2, 0.5}, {1, 2, 0.5}};
-  h.trigger = "proximity";
+  h.trigger = HotspotTrigger::kProximity;
   h.trigger_distance_m = 1.5;
-  h.action = "swap_image";
+  h.action = HotspotAction::kSwapImage;
   h.action_target = (dir / "media" / "open.png").string();
   p.hotspots = {h};
   p.geo = {true, 48.8566, 2.3522, 35.0, 0.3, 1.01, {5.0, 5.0}};
@@ -166,6 +171,52 @@ TEST_F(ProjectIoTest, MediaPathsAreStoredRelativeAndResolvedOnLoad) {
   EXPECT_EQ(loaded.plan.source_file, (moved / "plans" / "office.dxf").string());
   EXPECT_EQ(loaded.hotspots.at(0).action_target, (moved / "media" / "open.png").string());
   fs::rename(moved, dir_);
+}
+
+// How the keyframes were made travels with them, by name.
+TEST_F(ProjectIoTest, KeyframesRecordTheirMethodRuleAndSettings) {
+  save_project(make_full_project(dir_), file("k.plenopath"));
+  const nlohmann::json j = read_json_file(file("k.plenopath"));
+  EXPECT_EQ(j["version"], 2);
+  const nlohmann::json& k = j["keyframes"];
+  EXPECT_EQ(k["parameters"]["method"], "visibility");
+  EXPECT_EQ(k["parameters"]["rule"], "cell_rule");
+  EXPECT_EQ(k["sampler"]["cell_rule"]["transition_window_m"], 0.75);
+  EXPECT_EQ(k["sampler"]["refinement"]["applied"], true);
+  EXPECT_EQ(k["sampler"]["refinement"]["sweeps"], 4);
+  EXPECT_EQ(k["sampler"]["depth_changes"]["max_depth_width"], 512);
+  EXPECT_EQ(j["hotspots"][0]["trigger"], "proximity");
+  EXPECT_EQ(j["hotspots"][0]["action"], "swap_image");
+  EXPECT_EQ(j["hotspots"][0]["kind"], "event");
+}
+
+// A file of format version 1 (tests/data/projects/version1.plenopath) still opens: no rule and no sampler
+// settings recorded, so the defaults of that version (expected_loss, refined by loss); hotspots by name.
+TEST_F(ProjectIoTest, ReadsVersion1Files) {
+  const std::string v1 = std::string(PLENOPATH_TEST_DATA_DIR) + "/projects/version1.plenopath";
+  ASSERT_EQ(read_json_file(v1)["version"], 1);
+  const Project p = load_project(v1);
+  EXPECT_EQ(p.keyframes.indices, (std::vector<int>{0, 2}));
+  EXPECT_EQ(p.keyframes.parameters.method, SamplingMethod::kVisibility);
+  EXPECT_EQ(p.keyframes.parameters.rule, VisibilityRule::expected_loss);
+  EXPECT_EQ(p.keyframes.parameters.count, 2);
+  EXPECT_EQ(p.keyframes.sampler.expected_loss.probe_spacing_m, 0.25);
+  EXPECT_EQ(p.keyframes.sampler.expected_loss.loss_power, 0.5);
+  EXPECT_TRUE(p.keyframes.sampler.refinement.applied);
+  EXPECT_EQ(p.keyframes.sampler.refinement.sweeps, 6);
+  ASSERT_EQ(p.hotspots.size(), 2u);
+  EXPECT_EQ(p.hotspots[0].kind, HotspotKind::kEvent);
+  EXPECT_EQ(p.hotspots[0].trigger, HotspotTrigger::kProximity);
+  EXPECT_EQ(p.hotspots[0].action, HotspotAction::kPlaySound);
+  EXPECT_EQ(p.hotspots[0].action_target, (fs::path(v1).parent_path() / "media" / "bell.wav").string())
+      << "a play_sound target is media: resolved against the project";
+  EXPECT_EQ(p.hotspots[1].kind, HotspotKind::kMovieTexture);
+  EXPECT_EQ(p.hotspots[1].trigger, HotspotTrigger::kClick);
+  EXPECT_EQ(p.hotspots[1].action, HotspotAction::kNone);
+  // Saved again, it is a version 2 file that reads back the same.
+  save_project(p, file("again.plenopath"));
+  EXPECT_EQ(read_json_file(file("again.plenopath"))["version"], 2);
+  EXPECT_EQ(load_project(file("again.plenopath")), p);
 }
 
 TEST_F(ProjectIoTest, SaveKeepsPreviousVersionAsBak) {
@@ -271,6 +322,35 @@ TEST_F(ProjectIoTest, InvalidValuesAreRejected) {
   EXPECT_NE(error_of(file("d.plenopath")).find("duplicate frame index 3"), std::string::npos);
   write("q.plenopath", R"({"format":"plenopath-project","version":1,"tour":{"jpeg_quality":400}})");
   EXPECT_NE(error_of(file("q.plenopath")).find("/tour/jpeg_quality"), std::string::npos);
+}
+
+// A name this build does not know (a project from a newer studio, or edited by hand): an error naming the
+// file, the JSON path and the value.
+TEST_F(ProjectIoTest, UnknownNamesAreRefusedNamingFileAndValue) {
+  const std::string head = R"({"format":"plenopath-project","version":2,)";
+  const std::string spot = R"("hotspots":[{"id":"a","kind":"event","frame":0,)";
+  struct Case {
+    std::string name, json, path, value;
+  };
+  const std::vector<Case> cases = {
+      {"action", head + spot + R"("action":"teleport"}]})", "/hotspots/0/action", "'teleport'"},
+      {"trigger", head + spot + R"("trigger":"telepathy"}]})", "/hotspots/0/trigger", "'telepathy'"},
+      {"kind", head + R"("hotspots":[{"id":"a","kind":"hologram"}]})", "/hotspots/0/kind", "'hologram'"},
+      {"method", head + R"("keyframes":{"parameters":{"method":"learned"}}})", "/keyframes/parameters/method",
+       "'learned'"},
+      {"rule", head + R"("keyframes":{"parameters":{"method":"visibility","rule":"oracle"}}})",
+       "/keyframes/parameters/rule", "'oracle'"},
+  };
+  for (const Case& c : cases) {
+    write(c.name + ".plenopath", c.json);
+    const std::string e = error_of(file(c.name + ".plenopath"));
+    EXPECT_NE(e.find(c.name + ".plenopath: " + c.path + ": unknown"), std::string::npos) << e;
+    EXPECT_NE(e.find(c.value), std::string::npos) << e;
+    EXPECT_NE(e.find("newer Plenopath Studio"), std::string::npos) << e;
+  }
+  // The message lists what is known.
+  EXPECT_NE(error_of(file("action.plenopath")).find("'swap_image'"), std::string::npos);
+  EXPECT_NE(error_of(file("trigger.plenopath")).find("'click' or 'proximity'"), std::string::npos);
 }
 
 }  // namespace

@@ -276,7 +276,7 @@ TEST(Hotspots, EventPolygonEditedInThePanelWithPlainTextWarnings) {
   ASSERT_GE(open_url, 0);
   panel->action_box()->setCurrentIndex(open_url);
   emit panel->action_box()->activated(open_url);
-  EXPECT_EQ(s.hotspot(id)->action, "open_url");
+  EXPECT_EQ(s.hotspot(id)->action, HotspotAction::kOpenUrl);
   panel->target_edit()->setFocus();
   QTest::keyClicks(panel->target_edit(), "javascript:alert(1)");
   EXPECT_EQ(s.hotspot(id)->action_target, "javascript:alert(1)");
@@ -293,7 +293,7 @@ TEST(Hotspots, EventPolygonEditedInThePanelWithPlainTextWarnings) {
   undo->undo();
   undo->undo();
   EXPECT_EQ(s.hotspot(id)->title, made.title) << "undo restores the name";
-  EXPECT_EQ(s.hotspot(id)->action, "show_text") << "undo restores the action";
+  EXPECT_EQ(s.hotspot(id)->action, HotspotAction::kShowText) << "undo restores the action";
 
   // Selecting the test project's own hotspot (frame 0) from another frame jumps back to frame 0.
   s.document().set_current_position(20);

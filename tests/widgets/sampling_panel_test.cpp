@@ -71,7 +71,7 @@ TEST(SamplingPanel, SwitchingToVisibilityResamplesWithinTheBudgetAndUndoes) {
   select(panel, "visibility");
   ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
   const Keyframes visibility = document.project().keyframes;
-  EXPECT_EQ(visibility.parameters.method, "visibility");
+  EXPECT_EQ(visibility.parameters.method, SamplingMethod::kVisibility);
   EXPECT_EQ(static_cast<int>(visibility.indices.size()), expected_budget(panel, 30));
   EXPECT_EQ(visibility.indices.front(), 0);
   EXPECT_EQ(visibility.indices.back(), 29);
@@ -92,6 +92,19 @@ TEST(SamplingPanel, SwitchingToVisibilityResamplesWithinTheBudgetAndUndoes) {
   ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
   EXPECT_EQ(static_cast<int>(document.project().keyframes.indices.size()), expected_budget(panel, 30));
   EXPECT_TRUE(panel.exponent_slider()->isEnabled());
+  // The document records the rule, so another panel on it (a reopened project) shows the cell rule.
+  EXPECT_EQ(document.project().keyframes.parameters.method, SamplingMethod::kVisibility);
+  EXPECT_EQ(document.project().keyframes.parameters.rule, VisibilityRule::cell_rule);
+  EXPECT_FALSE(document.project().keyframes.sampler.refinement.applied);
+  {
+    widgets::ProjectDocument reopened;
+    reopened.reset(document.project(), QString());
+    SamplingPanel shown(reopened);
+    EXPECT_EQ(shown.method_box()->currentData().toString(), "visibility:cells");
+    shown.wait();
+  }
+  EXPECT_EQ(visibility.parameters.rule, VisibilityRule::expected_loss);
+  EXPECT_TRUE(visibility.sampler.refinement.applied);
   const int before_drag = stack->count();
   QSlider* slider = panel.budget_slider();
   slider->setSliderDown(true);
@@ -129,11 +142,11 @@ TEST(SamplingPanel, DepthSamplingWithDepthMaps) {
   select(panel, "depth");
   ASSERT_TRUE(test::wait_until([&] { return !panel.busy(); }, 60000));
   const Keyframes k = document.project().keyframes;
-  EXPECT_EQ(k.parameters.method, "depth") << panel.statistics_text().toStdString();
+  EXPECT_EQ(k.parameters.method, SamplingMethod::kDepth) << panel.statistics_text().toStdString();
   EXPECT_EQ(static_cast<int>(k.indices.size()), expected_budget(panel, 30));
   EXPECT_EQ(document.undo_stack()->count(), steps + 1);
   document.undo_stack()->undo();
-  EXPECT_EQ(document.project().keyframes.parameters.method, "uniform");
+  EXPECT_EQ(document.project().keyframes.parameters.method, SamplingMethod::kUniform);
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ TestProject make(const QString& name) {
   h.title = "Poster";
   h.frame = 0;
   h.kind = HotspotKind::kEvent;
-  h.action = "show_text";
+  h.action = HotspotAction::kShowText;
   for (const auto& [az, el] :
        std::vector<std::pair<double, double>>{{-20, -10}, {20, -10}, {20, 20}, {-20, 20}})
     h.image_corners.push_back({az * M_PI / 180.0, el * M_PI / 180.0});

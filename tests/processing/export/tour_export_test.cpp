@@ -80,7 +80,7 @@ Project make_rendered_project(const fs::path& dir, int frame_count = 12, int wid
     const Eigen::Vector2d c = ahead + u * side;
     tv.world_corners.emplace_back(c.x(), c.y(), z);
   }
-  tv.action = "show_text";
+  tv.action = HotspotAction::kShowText;
   tv.action_target = "It is a poster.";
   Hotspot lift;
   lift.id = "lift";
@@ -89,7 +89,7 @@ Project make_rendered_project(const fs::path& dir, int frame_count = 12, int wid
   lift.media = (dir / "missing.mp4").string();  // missing media: a warning, not a failure
   lift.frame = 5;
   lift.image_corners = {{0.1, 0.2}, {0.3, 0.2}, {0.3, -0.1}, {0.1, -0.1}};
-  lift.action = "jump";
+  lift.action = HotspotAction::kJump;
   lift.action_target = "11";
   p.hotspots = {tv, lift};
   p.geo = {true, 48.0, 2.0, 35.0, 0.0, 1.0, {0.0, 0.0}};
@@ -415,7 +415,7 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   Hotspot& tv = p.hotspots[0];
   tv.kind = HotspotKind::kEvent;
   tv.title = "Lift doors";
-  tv.action = "swap_image";
+  tv.action = HotspotAction::kSwapImage;
   tv.action_target = doors;
   TourExportOptions options;
   options.output = (work / "tour").string();

@@ -158,7 +158,7 @@ TEST(HotspotValidation, MarkupIsReportedAsShownAsText) {
   EXPECT_TRUE(has_field(validate_hotspot(h, project_with(h)), "title"));
   h = good_movie_texture();
   h.kind = HotspotKind::kEvent;
-  h.action = "show_text";
+  h.action = HotspotAction::kShowText;
   h.action_target = "<script>alert(1)</script>";
   const auto w = validate_hotspot(h, project_with(h));
   ASSERT_TRUE(has_field(w, "action_target")) << all(w);
@@ -169,33 +169,33 @@ TEST(HotspotValidation, EventActionsNeedUsableTargets) {
   Hotspot h = good_movie_texture();
   h.kind = HotspotKind::kEvent;
   h.media.clear();
-  auto warnings_for = [&](const std::string& action, const std::string& target) {
+  auto warnings_for = [&](HotspotAction action, const std::string& target) {
     h.action = action;
     h.action_target = target;
     return validate_hotspot(h, project_with(h));
   };
-  EXPECT_TRUE(warnings_for("jump", "5").empty());
-  EXPECT_TRUE(has_field(warnings_for("jump", "6"), "action_target")) << "frame 6 is not on the path";
-  EXPECT_TRUE(warnings_for("jump", "https://example.org/other-tour/").empty());
-  EXPECT_TRUE(has_field(warnings_for("jump", "somewhere"), "action_target"));
-  EXPECT_TRUE(warnings_for("open_url", "https://example.org").empty());
-  EXPECT_TRUE(has_field(warnings_for("open_url", "javascript:alert(1)"), "action_target"));
-  EXPECT_TRUE(warnings_for("swap_image", files().good_png).empty());
-  EXPECT_TRUE(has_field(warnings_for("swap_image", files().broken_png), "action_target"));
+  EXPECT_TRUE(warnings_for(HotspotAction::kJump, "5").empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kJump, "6"), "action_target"))
+      << "frame 6 is not on the path";
+  EXPECT_TRUE(warnings_for(HotspotAction::kJump, "https://example.org/other-tour/").empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kJump, "somewhere"), "action_target"));
+  EXPECT_TRUE(warnings_for(HotspotAction::kOpenUrl, "https://example.org").empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kOpenUrl, "javascript:alert(1)"), "action_target"));
+  EXPECT_TRUE(warnings_for(HotspotAction::kSwapImage, files().good_png).empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kSwapImage, files().broken_png), "action_target"));
   // An image sequence (the lift doors opening) is swapped in as a video; an unreadable one is reported.
-  EXPECT_TRUE(warnings_for("swap_image", files().good_video).empty());
-  EXPECT_TRUE(has_field(warnings_for("swap_image", files().broken_mp4), "action_target"));
-  EXPECT_TRUE(warnings_for("play_sound", files().sound).empty());
-  EXPECT_TRUE(has_field(warnings_for("play_sound", (files().dir / "none.wav").string()), "action_target"));
-  EXPECT_TRUE(has_field(warnings_for("play_video", files().broken_mp4), "action_target"));
-  EXPECT_TRUE(has_field(warnings_for("", ""), "action"));
-  EXPECT_TRUE(has_field(warnings_for("explode", ""), "action"));
-  EXPECT_TRUE(warnings_for("show_text", "Plain words").empty());
-  h.trigger = "proximity";
+  EXPECT_TRUE(warnings_for(HotspotAction::kSwapImage, files().good_video).empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kSwapImage, files().broken_mp4), "action_target"));
+  EXPECT_TRUE(warnings_for(HotspotAction::kPlaySound, files().sound).empty());
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kPlaySound, (files().dir / "none.wav").string()),
+                        "action_target"));
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kPlayVideo, files().broken_mp4), "action_target"));
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kNone, ""), "action"));
+  EXPECT_TRUE(warnings_for(HotspotAction::kShowText, "Plain words").empty());
+  h.trigger = HotspotTrigger::kProximity;
   h.trigger_distance_m = 0;
-  EXPECT_TRUE(has_field(warnings_for("show_text", "Plain words"), "trigger_distance_m"));
-  h.trigger = "telepathy";
-  EXPECT_TRUE(has_field(warnings_for("show_text", "Plain words"), "trigger"));
+  EXPECT_TRUE(has_field(warnings_for(HotspotAction::kShowText, "Plain words"), "trigger_distance_m"));
+  // Unknown action or trigger names cannot reach here: reading the file refuses them (project_io_test).
 }
 
 TEST(HotspotValidation, ProjectLevelProblems) {

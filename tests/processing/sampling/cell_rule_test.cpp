@@ -60,9 +60,9 @@ TEST(CellRule, AllocatesByHandComputedCounts) {
   SamplingInputs in;
   in.path = &path;
   in.cells = &cells;
-  in.visibility.rule = VisibilityRule::cell_rule;
   SamplingParameters p;
-  p.method = "visibility";
+  p.method = SamplingMethod::kVisibility;
+  p.rule = VisibilityRule::cell_rule;
   p.transition_boost = 0.0;
   // Keyframes sit at equal steps k / (count - 1) of cumulative mass, the ends included.
   // e = 3: masses 2 : 2 : 8, boundaries at 1/6 and 1/3. count 14, steps k/13: cell 1 holds k = 0..2,
@@ -104,9 +104,9 @@ TEST(CellRule, TransitionBoostAddsKeyframesAtBigChanges) {
   SamplingInputs in;
   in.path = &path;
   in.cells = &cells;
-  in.visibility.rule = VisibilityRule::cell_rule;
   SamplingParameters p;
-  p.method = "visibility";
+  p.method = SamplingMethod::kVisibility;
+  p.rule = VisibilityRule::cell_rule;
   p.exponent = 1.0;  // masses 0.5, 0.125, 2 -> densities per metre 0.25, 0.03125, 1 (relative)
   p.count = 42;
   p.transition_boost = 0.0;
@@ -140,9 +140,9 @@ TEST(CellRule, FollowsTheRuleOnAPlan) {
   in.path = &path;
   in.cells = &cells;
   in.index = &index;
-  in.visibility.rule = VisibilityRule::cell_rule;
   SamplingParameters p;
-  p.method = "visibility";
+  p.method = SamplingMethod::kVisibility;
+  p.rule = VisibilityRule::cell_rule;
   p.exponent = 2.0;
   p.transition_boost = 0.0;
   p.count = 60;

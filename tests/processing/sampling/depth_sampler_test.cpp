@@ -40,7 +40,7 @@ TEST(DepthSampler, CellsStartAtSignificantChanges) {
   // e = 3: masses 3.95^3 / 8 = 7.70 and 6.05^3 / 64 = 3.46; count 12 -> steps k/11, boundary at
   // 7.70 / 11.16 = 0.690: k = 0..7 in the first cell (8), k = 8..11 in the second (4).
   SamplingParameters p;
-  p.method = "depth";
+  p.method = SamplingMethod::kDepth;
   p.exponent = 3.0;
   p.transition_boost = 0.0;
   p.count = 12;
@@ -49,7 +49,7 @@ TEST(DepthSampler, CellsStartAtSignificantChanges) {
   int first = 0;
   for (int i : k.indices) first += path.find_frame(i)->x < 3.95;
   EXPECT_EQ(first, 8);
-  EXPECT_EQ(k.parameters.method, "depth");
+  EXPECT_EQ(k.parameters.method, SamplingMethod::kDepth);
   EXPECT_THROW(sample_by_depth(path, std::vector<DepthVolume>(5), p, {}), Error);
 }
 
@@ -92,7 +92,7 @@ TEST(DepthSampler, RenderedDepthFindsTheDoor) {
     nearest = std::min(nearest, std::abs(cells[c].s_begin - 2.5));
   EXPECT_LT(nearest, 1.0);
   SamplingParameters p;
-  p.method = "depth";
+  p.method = SamplingMethod::kDepth;
   p.count = 10;
   EXPECT_EQ(sample_by_depth(path, volumes, p, {}).indices.size(), 10u);
 }

@@ -50,16 +50,24 @@ Fixture& fixture() {
 }
 
 struct Method {
-  std::string name;
+  SamplingMethod method;
   VisibilityRule rule;
 };
-const std::vector<Method> kMethods = {{"uniform", VisibilityRule::expected_loss},
-                                      {"visibility", VisibilityRule::expected_loss},
-                                      {"visibility", VisibilityRule::cell_rule},
-                                      {"depth", VisibilityRule::expected_loss}};
+const std::vector<Method> kMethods = {{SamplingMethod::kUniform, VisibilityRule::expected_loss},
+                                      {SamplingMethod::kVisibility, VisibilityRule::expected_loss},
+                                      {SamplingMethod::kVisibility, VisibilityRule::cell_rule},
+                                      {SamplingMethod::kDepth, VisibilityRule::expected_loss}};
 
 std::string label(const Method& m) {
-  return m.name + (m.name == "visibility" ? std::string("/") + to_string(m.rule) : "");
+  return std::string(to_string(m.method)) +
+         (m.method == SamplingMethod::kVisibility ? std::string("/") + to_string(m.rule) : "");
+}
+
+SamplingParameters parameters_of(const Method& m) {
+  SamplingParameters p;
+  p.method = m.method;
+  p.rule = m.rule;
+  return p;
 }
 
 void expect_valid(const CameraPath& path, const Keyframes& k, const std::string& what) {
@@ -77,19 +85,17 @@ void expect_valid(const CameraPath& path, const Keyframes& k, const std::string&
 TEST(KeyframeSampler, BudgetsAreMetExactly) {
   Fixture& f = fixture();
   for (const Method& m : kMethods) {
-    f.inputs.visibility.rule = m.rule;
     for (int count : {2, 3, 5, 17, 40, 100, 341}) {
-      SamplingParameters p;
-      p.method = m.name;
+      SamplingParameters p = parameters_of(m);
       p.count = count;
       const Keyframes k = sample_keyframes(f.inputs, p);
       EXPECT_EQ(static_cast<int>(k.indices.size()), count) << label(m) << " count " << count;
       expect_valid(f.path, k, label(m));
-      EXPECT_EQ(k.parameters.method, m.name);
+      EXPECT_EQ(k.parameters.method, m.method);
+      EXPECT_EQ(k.parameters.rule, m.rule);
     }
     for (double ratio : {2.0, 7.5, 50.0, 1000.0}) {
-      SamplingParameters p;
-      p.method = m.name;
+      SamplingParameters p = parameters_of(m);
       p.ratio = ratio;
       const Keyframes k = sample_keyframes(f.inputs, p);
       EXPECT_EQ(static_cast<int>(k.indices.size()), keyframe_budget(p, 341))
@@ -102,9 +108,7 @@ TEST(KeyframeSampler, PinnedFramesAreKeptWithinTheBudget) {
   Fixture& f = fixture();
   const std::vector<int> pinned = {3, 4, 170, 333};
   for (const Method& m : kMethods) {
-    f.inputs.visibility.rule = m.rule;
-    SamplingParameters p;
-    p.method = m.name;
+    SamplingParameters p = parameters_of(m);
     p.count = 12;
     const Keyframes k = sample_keyframes(f.inputs, p, pinned);
     EXPECT_EQ(k.indices.size(), 12u) << label(m);
@@ -119,7 +123,7 @@ TEST(KeyframeSampler, PinnedFramesAreKeptWithinTheBudget) {
     expect_valid(f.path, k, label(m));
   }
   SamplingParameters p;
-  p.method = "uniform";
+  p.method = SamplingMethod::kUniform;
   p.count = 5;  // 2 ends + 4 pinned > 5
   EXPECT_THROW(sample_keyframes(f.inputs, p, pinned), Error);
   EXPECT_THROW(sample_keyframes(f.inputs, p, {9999}), Error);
@@ -129,9 +133,7 @@ TEST(KeyframeSampler, SpacingIsHonoured) {
   Fixture& f = fixture();
   const std::vector<double> s = f.path.arc_lengths();
   for (const Method& m : kMethods) {
-    f.inputs.visibility.rule = m.rule;
-    SamplingParameters p;
-    p.method = m.name;
+    SamplingParameters p = parameters_of(m);
     p.count = 20;
     p.min_spacing_m = 0.6;
     p.max_spacing_m = 1.2;
@@ -144,7 +146,7 @@ TEST(KeyframeSampler, SpacingIsHonoured) {
     }
   }
   SamplingParameters p;
-  p.method = "uniform";
+  p.method = SamplingMethod::kUniform;
   p.count = 5;
   p.max_spacing_m = 1.0;  // 17 m needs at least 18 keyframes
   EXPECT_THROW(sample_keyframes(f.inputs, p), Error);
@@ -162,20 +164,19 @@ TEST(KeyframeSampler, MissingInputsAreReported) {
   SamplingInputs in;
   in.path = &path;
   SamplingParameters p;
-  p.method = "visibility";
+  p.method = SamplingMethod::kVisibility;
   try {
     sample_keyframes(in, p);
     FAIL() << "no throw";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("visibility"), std::string::npos) << e.what();
   }
-  in.visibility.rule = VisibilityRule::cell_rule;
+  p.rule = VisibilityRule::cell_rule;
   EXPECT_THROW(sample_keyframes(in, p), Error);
-  p.method = "depth";
+  p.method = SamplingMethod::kDepth;
   EXPECT_THROW(sample_keyframes(in, p), Error);
-  p.method = "bogus";
-  EXPECT_THROW(sample_keyframes(in, p), Error);
-  EXPECT_THROW(visibility_rule_from_string("bogus"), Error);
+  EXPECT_THROW(enum_from_string<SamplingMethod>("bogus"), Error);
+  EXPECT_THROW(enum_from_string<VisibilityRule>("bogus"), Error);
 }
 
 // Every prefix of the progressive order: a valid sampling of its size (ends, sorted unique), and its
@@ -183,9 +184,7 @@ TEST(KeyframeSampler, MissingInputsAreReported) {
 TEST(KeyframeSampler, EveryPrefixIsAGoodSampling) {
   Fixture& f = fixture();
   for (const Method& m : kMethods) {
-    f.inputs.visibility.rule = m.rule;
-    SamplingParameters p;
-    p.method = m.name;
+    SamplingParameters p = parameters_of(m);
     p.count = 34;
     const Keyframes full = sample_keyframes(f.inputs, p);
     const std::vector<int> order = full.progressive_order();
@@ -209,13 +208,94 @@ TEST(KeyframeSampler, EveryPrefixIsAGoodSampling) {
   }
 }
 
+// The keyframes say how they were made: method, rule and the settings the sampler's options held (the
+// values set here, not the defaults), and whether the loss refinement moved them.
+TEST(KeyframeSampler, RecordsHowTheKeyframesWereMade) {
+  Fixture& f = fixture();
+  SamplingInputs in = f.inputs;
+  in.raster = nullptr;
+  in.visibility.probe_spacing_m = 0.5;
+  in.visibility.loss_power = 0.75;
+  in.visibility.density_floor = 0.2;
+  in.visibility.refine_sweeps = 3;
+  in.visibility.raster_cell_m = 0.1;
+  in.visibility.cells.transition_window_m = 2.0;
+  in.visibility.cells.min_size = 0.05;
+  SamplingParameters p;
+  p.method = SamplingMethod::kVisibility;
+  p.rule = VisibilityRule::expected_loss;
+  p.count = 12;
+  Keyframes k = sample_keyframes(in, p);
+  EXPECT_EQ(k.parameters, p);
+  EXPECT_EQ(k.sampler.expected_loss.probe_spacing_m, 0.5);
+  EXPECT_EQ(k.sampler.expected_loss.loss_power, 0.75);
+  EXPECT_EQ(k.sampler.expected_loss.density_floor, 0.2);
+  EXPECT_TRUE(k.sampler.refinement.applied);
+  EXPECT_EQ(k.sampler.refinement.sweeps, 3);
+  EXPECT_EQ(k.sampler.refinement.raster_cell_m, 0.1);  // the three rooms are small: not grown
+
+  p.rule = VisibilityRule::cell_rule;
+  p.exponent = 2.0;
+  k = sample_keyframes(in, p);
+  EXPECT_EQ(k.parameters, p);
+  EXPECT_EQ(k.sampler.cell_rule.transition_window_m, 2.0);
+  EXPECT_EQ(k.sampler.cell_rule.min_size, 0.05);
+  EXPECT_FALSE(k.sampler.refinement.applied) << "the cell rule places keyframes unrefined";
+  EXPECT_EQ(k.sampler.refinement.sweeps, LossRefinementSettings{}.sweeps) << "not used";
+  EXPECT_EQ(k.sampler.expected_loss.probe_spacing_m, ExpectedLossSettings{}.probe_spacing_m) << "not used";
+
+  in.depth.changes.log_ratio_threshold = 0.4;
+  in.depth.changes.use_mean_range = true;
+  in.depth.changes.min_coverage = 0.3;
+  in.depth.max_depth_width = 128;
+  in.depth_envelopes = nullptr;  // no eye-level envelopes: nothing to refine on
+  p.method = SamplingMethod::kDepth;
+  k = sample_keyframes(in, p);
+  EXPECT_EQ(k.parameters.method, SamplingMethod::kDepth);
+  EXPECT_EQ(k.sampler.depth_changes.log_ratio_threshold, 0.4);
+  EXPECT_TRUE(k.sampler.depth_changes.use_mean_range);
+  EXPECT_EQ(k.sampler.depth_changes.min_coverage, 0.3);
+  EXPECT_EQ(k.sampler.depth_changes.max_depth_width, 128);
+  EXPECT_FALSE(k.sampler.refinement.applied);
+  in.depth_envelopes = &f.envelopes;  // stand-ins for the eye-level envelopes
+  k = sample_keyframes(in, p);
+  EXPECT_TRUE(k.sampler.refinement.applied);
+
+  p.method = SamplingMethod::kUniform;
+  EXPECT_EQ(sample_keyframes(in, p).sampler, SamplerSettings{});
+}
+
+// A project file written before the settings were recorded reads them as the samplers' defaults: the
+// model's defaults must be the processing options' defaults.
+TEST(KeyframeSampler, RecordedDefaultsAreTheSamplersDefaults) {
+  const SamplerSettings s;
+  const VisibilitySamplingOptions v;
+  EXPECT_EQ(s.expected_loss.probe_spacing_m, v.probe_spacing_m);
+  EXPECT_EQ(s.expected_loss.loss_power, v.loss_power);
+  EXPECT_EQ(s.expected_loss.density_floor, v.density_floor);
+  EXPECT_EQ(s.refinement.sweeps, v.refine_sweeps);
+  EXPECT_EQ(s.refinement.raster_cell_m, v.raster_cell_m);
+  EXPECT_EQ(s.cell_rule.transition_window_m, v.cells.transition_window_m);
+  EXPECT_EQ(s.cell_rule.min_size, v.cells.min_size);
+  const DepthSamplingOptions d;
+  EXPECT_EQ(s.depth_changes.log_ratio_threshold, d.changes.log_ratio_threshold);
+  EXPECT_EQ(s.depth_changes.use_mean_range, d.changes.use_mean_range);
+  EXPECT_EQ(s.depth_changes.min_coverage, d.changes.min_coverage);
+  EXPECT_EQ(s.depth_changes.max_depth_width, d.max_depth_width);
+  EXPECT_EQ(s.refinement.sweeps, d.refine_sweeps);
+  EXPECT_EQ(s.refinement.raster_cell_m, d.raster_cell_m);
+  EXPECT_EQ(s.cell_rule.transition_window_m, d.cells.transition_window_m);
+  EXPECT_EQ(s.cell_rule.min_size, d.cells.min_size);
+  EXPECT_EQ(SamplingParameters{}.rule, VisibilityRule::expected_loss);
+}
+
 // The new uniform sampler agrees with the baseline where both apply (no pins): same frames.
 TEST(KeyframeSampler, UniformMatchesTheBaseline) {
   const CameraPath path = straight_path(101, 0.1);
   SamplingInputs in;
   in.path = &path;
   SamplingParameters p;
-  p.method = "uniform";
+  p.method = SamplingMethod::kUniform;
   p.count = 11;
   const Keyframes k = sample_keyframes(in, p);
   EXPECT_EQ(k.indices, (std::vector<int>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100}));

@@ -64,7 +64,7 @@ TEST(SamplingCancel, LossRefinement) {
   SamplingInputs inputs;
   inputs.path = &scene().path;
   SamplingParameters uniform;
-  uniform.method = "uniform";
+  uniform.method = SamplingMethod::kUniform;
   uniform.count = 20;
   const Keyframes start = sample_keyframes(inputs, uniform);
   CancelAtFirstReport c;

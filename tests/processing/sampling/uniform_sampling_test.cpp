@@ -39,7 +39,7 @@ TEST(UniformSampling, EvenlySpacedFramesOnAnEvenPath) {
   const Keyframes k = sample_uniform_by_arc_length(straight_path(101, 0.1), p);
   const std::vector<int> expected{0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100};
   EXPECT_EQ(k.indices, expected);
-  EXPECT_EQ(k.parameters.method, "uniform");
+  EXPECT_EQ(k.parameters.method, SamplingMethod::kUniform);
   // Ranks: the two ends first, then the middle (frame 50 sits at position 5).
   ASSERT_EQ(k.rank.size(), 11u);
   EXPECT_EQ(k.rank[0], 0);
