@@ -12,6 +12,8 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/cli/command.h"
 #include "app/cli/console_progress.h"
@@ -76,6 +78,9 @@ Command add_track_command(CLI::App& parent) {
     int stride = 1;
     std::vector<double> known_distance;  // frame a, frame b, metres
     std::string anchors;                 // anchors file: the path is refined onto them after tracking
+    std::string mask;                    // image of the pixels not to use (black), e.g. the trolley
+    bool level = false;                  // per-frame pitch/roll from vertical edges
+    bool no_static_mask = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub =
@@ -104,6 +109,14 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--work-width", options->work_width,
                   "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
+  sub->add_option("--mask", options->mask,
+                  "Mask image (any size, resized to the frames): black pixels are not used (the trolley, "
+                  "the operator); combined with the automatic static-region mask");
+  sub->add_flag("--no-static-mask", options->no_static_mask,
+                "Do not mask image regions that stay put while the camera moves (trolley, operator)");
+  sub->add_flag(
+      "--level", options->level,
+      "Estimate pitch and roll per frame from vertical edges (a camera rocking on an uneven floor)");
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
@@ -134,6 +147,15 @@ Command add_track_command(CLI::App& parent) {
         eo.camera_height_m = options->camera_height;
         eo.klt.work_width = options->work_width;
         eo.loop.enabled = !options->no_loop_closure;
+        eo.klt.level_bearings = options->level;
+        if (options->no_static_mask) eo.static_mask.frames = 0;
+        if (!options->mask.empty()) {
+          eo.mask = cv::imread(options->mask, cv::IMREAD_GRAYSCALE);
+          if (eo.mask.empty()) throw Error(options->mask + ": cannot read the mask image");
+          cv::threshold(eo.mask, eo.mask, 127, 255, cv::THRESH_BINARY);
+          if (cv::countNonZero(eo.mask) == 0)
+            throw Error(options->mask + ": the mask is all black (no pixel left to track)");
+        }
         if (options->known_distance.size() == 3) {
           // Capture positions to positions among the tracked frames.
           auto tracked = [&](double frame) {

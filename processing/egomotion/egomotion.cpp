@@ -36,6 +36,7 @@ void PieceOptions::check() const {
 
 void EgomotionOptions::check() const {
   loop.check();
+  static_mask.check();
   pieces.check();
   ring.check();
   klt.check();
@@ -68,12 +69,22 @@ void EgomotionOptions::check() const {
   require_option(jump_factor > 1, s + "jump_factor", "must be > 1", jump_factor);
   require_option(moving_outlier_fraction > 0 && moving_outlier_fraction <= 1, s + "moving_outlier_fraction",
                  "must be in (0, 1]", moving_outlier_fraction);
+  require_option(mask.empty() || mask.type() == CV_8U, s + "mask", "must be 8-bit (CV_8U)",
+                 mask.empty() ? std::string("empty") : std::to_string(mask.type()));
 }
 
 struct EgomotionTracker::State {
-  explicit State(const EgomotionOptions& o) : options(o), klt(o.klt) {}
+  explicit State(const EgomotionOptions& o) : options(o), klt(o.klt), auto_mask(o.static_mask) {}
   EgomotionOptions options;
   KltTracker klt;
+  // Masking (static_mask.h): frames are held until the mask is decided, then processed.
+  StaticMaskEstimator auto_mask;
+  std::vector<cv::Mat> held;  // working-size grey frames
+  bool mask_decided = false;
+  cv::Mat mask;                      // working size, 255 = usable; empty = everything
+  std::vector<double> ring_weights;  // per ring column (with a mask)
+  void decide_mask(cv::Size size);
+  void process(const cv::Mat& gray);
   std::vector<std::vector<double>> rings;
   std::vector<FrameTrackStats> stats;
   std::vector<int> live_after;  // live tracks after each frame (texture measure)
@@ -93,22 +104,62 @@ EgomotionTracker::EgomotionTracker(const EgomotionOptions& options) {
   state_ = std::make_unique<State>(options);
 }
 EgomotionTracker::~EgomotionTracker() = default;
-int EgomotionTracker::frame_count() const { return static_cast<int>(state_->rings.size()); }
+int EgomotionTracker::frame_count() const {
+  return static_cast<int>(state_->rings.size() + state_->held.size());
+}
 
 void EgomotionTracker::add_frame(const cv::Mat& bgr) {
   const auto t0 = Clock::now();
   State& s = *state_;
-  if (bgr.empty()) throw Error("egomotion: frame " + std::to_string(s.rings.size()) + " is empty");
+  const int count = frame_count();
+  if (bgr.empty()) throw Error("egomotion: frame " + std::to_string(count) + " is empty");
   if (bgr.cols != 2 * bgr.rows)
-    throw Error("egomotion: frame " + std::to_string(s.rings.size()) + " is not equirectangular 2:1");
+    throw Error("egomotion: frame " + std::to_string(count) + " is not equirectangular 2:1");
   const cv::Mat gray = equirect_at_width(grey_image(bgr, "egomotion"), s.options.klt.work_width);
-  s.rings.push_back(make_ring_image(gray, s.options.ring));
+  if (!s.mask_decided) {
+    if (s.options.static_mask.frames > 0) {  // hold the frames until the automatic mask is decided
+      s.auto_mask.add(gray);
+      s.held.push_back(gray);
+      if (s.auto_mask.ready()) {
+        s.decide_mask(gray.size());
+        for (const cv::Mat& g : s.held) s.process(g);
+        s.held.clear();
+      }
+      s.seconds_frames += seconds_since(t0);
+      return;
+    }
+    s.decide_mask(gray.size());
+  }
+  s.process(gray);
+  s.seconds_frames += seconds_since(t0);
+}
+
+void EgomotionTracker::State::decide_mask(cv::Size size) {
+  mask_decided = true;
+  cv::Mat author;
+  if (!options.mask.empty()) cv::resize(options.mask, author, size, 0, 0, cv::INTER_NEAREST);
+  mask = combine_masks(author, options.static_mask.frames > 0 ? auto_mask.mask(size) : cv::Mat());
+  if (mask.empty()) return;
+  if (cv::countNonZero(mask) == 0) throw Error("egomotion: the mask leaves no pixel to track");
+  klt.set_mask(mask);
+  ring_weights = ring_column_weights(mask, options.ring);
+  window.clear();
+}
+
+void EgomotionTracker::State::process(const cv::Mat& gray) {
+  State& s = *this;
+  s.rings.push_back(s.mask.empty() ? make_ring_image(gray, s.options.ring)
+                                   : make_ring_image(gray, s.options.ring, s.mask));
   // The turn since the previous frame, from the rings, starts the KLT search (fast turns).
   double predicted_shift = 0.0;
   if (s.rings.size() >= 2) {
     const std::vector<double>& previous = s.rings[s.rings.size() - 2];
     const double max_px = s.options.ring.max_turn_deg_per_frame / 360.0 * gray.cols;
-    if (s.window.size() != previous.size()) s.window = axis_window(gray.cols, s.options.ring.axis_floor);
+    if (s.window.size() != previous.size()) {
+      s.window = axis_window(gray.cols, s.options.ring.axis_floor);
+      for (std::size_t u = 0; u < s.ring_weights.size() && u < s.window.size(); ++u)
+        s.window[u] *= s.ring_weights[u];
+    }
     const RingShift shift = circular_phase_correlation(previous, s.rings.back(), 0.0, max_px, &s.window,
                                                        s.options.ring.max_frequency_fraction);
     if (shift.valid && shift.peak >= s.options.ring.min_peak) predicted_shift = shift.shift_px;
@@ -132,14 +183,21 @@ void EgomotionTracker::add_frame(const cv::Mat& bgr) {
   s.previous_live = s.klt.live_tracks();
   s.previous_positions = std::move(positions);
   s.live_after.push_back(st.tracked + st.detected);
-  s.seconds_frames += seconds_since(t0);
 }
 
 EgomotionResult EgomotionTracker::finish(Progress& progress) {
   const auto t_start = Clock::now();
   State& s = *state_;
+  if (!s.mask_decided && !s.held.empty()) {  // fewer frames than the static mask waits for
+    s.decide_mask(s.held.front().size());
+    for (const cv::Mat& g : s.held) s.process(g);
+    s.held.clear();
+  }
   const EgomotionOptions& opt = s.options;
   EgomotionResult result;
+  result.mask = s.mask;
+  result.static_mask_fraction =
+      s.mask.empty() ? 0.0 : 1.0 - cv::countNonZero(s.mask) / double(s.mask.total());
   result.seconds_per_frame_stage = s.seconds_frames;
   const int n = static_cast<int>(s.rings.size());
   if (n == 0) throw Error("egomotion: the capture has no frames");
@@ -160,7 +218,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
   // ---- 1. coarse headings
   // Progress: the headings 5 %, the pieces the rest (each by its share of the frames).
   progress.checkpoint(0.0, "headings");
-  const RingHeadings rh = solve_ring_headings(s.rings, opt.ring);
+  const RingHeadings rh =
+      solve_ring_headings(s.rings, opt.ring, s.ring_weights.empty() ? nullptr : &s.ring_weights);
   result.ring_headings = rh.headings;
   progress.checkpoint(0.05, "headings");
 

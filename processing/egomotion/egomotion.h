@@ -30,6 +30,7 @@
 #include "processing/egomotion/path_refinement.h"
 #include "processing/egomotion/planar_two_view.h"
 #include "processing/egomotion/ring_heading.h"
+#include "processing/egomotion/static_mask.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -83,6 +84,12 @@ struct EgomotionOptions {
   // turns); 25 people walking about the office reach 0.09.
   double moving_outlier_fraction = 0.15;
   std::uint32_t seed = 1;
+  // Pixels not to use, as the author drew them (CV_8U, any size, resized to the working size: 255 = usable,
+  // 0 = the trolley, the operator, a logo). Empty = none. Combined with the automatic static-region mask.
+  cv::Mat mask;
+  // The automatic static-region mask (static_mask.h): the first frames are buffered until it is decided
+  // (static_mask.frames = 0: no automatic mask, no buffering).
+  StaticMaskOptions static_mask;
   void check() const;  // throws Error naming the bad field
 };
 
@@ -106,6 +113,8 @@ struct EgomotionResult {
   double scale_factor = 1.0;                     // piece 0's metres per internal unit applied at the end
   int floor_points = 0;                          // points used for the camera-height scale
   int flagged_frames = 0;
+  cv::Mat mask;  // the pixels used (255) and masked (0) at the working size; empty = all used
+  double static_mask_fraction = 0.0;   // share of the image masked (author's and automatic)
   double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)
   double seconds_geometry = 0;         // everything in finish()
 };

@@ -46,13 +46,24 @@ void KltOptions::check() const {
                  affine_refresh_deformation);
   require_option(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90, s + "max_abs_elevation_deg",
                  "must be in (10, 90]", max_abs_elevation_deg);
+  if (level_bearings) tilt.check();
 }
 
 KltTracker::KltTracker(const KltOptions& options) : options_(options) { options.check(); }
 
 Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
   // OpenCV puts pixel centres on integers; rig/spherical.h puts them at u + 0.5.
-  return equirect_to_bearing({o.x + 0.5, o.y + 0.5}, width_, height_);
+  const Eigen::Vector3d b = equirect_to_bearing({o.x + 0.5, o.y + 0.5}, width_, height_);
+  if (!options_.level_bearings || o.frame < 0 || o.frame >= static_cast<int>(level_from_camera_.size()))
+    return b;
+  return level_from_camera_[static_cast<std::size_t>(o.frame)] * b;
+}
+
+void KltTracker::set_mask(const cv::Mat& mask) {
+  if (!mask.empty() && mask.type() != CV_8U) throw Error("KLT: the mask must be 8-bit (CV_8U)");
+  mask_ = mask.clone();
+  if (!mask_.empty() && width_ > 0 && mask_.size() != cv::Size(width_, height_))
+    cv::resize(mask_, mask_, cv::Size(width_, height_), 0, 0, cv::INTER_NEAREST);
 }
 
 cv::Mat KltTracker::prepare(const cv::Mat& frame) {
@@ -71,6 +82,16 @@ cv::Mat KltTracker::prepare(const cv::Mat& frame) {
 FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shift_px) {
   const cv::Mat gray = prepare(frame);
   const int frame_index = frame_count_++;
+  if (!mask_.empty() && mask_.size() != gray.size())
+    cv::resize(mask_, mask_, gray.size(), 0, 0, cv::INTER_NEAREST);
+  if (options_.level_bearings) {
+    const TiltEstimate tilt = estimate_tilt(gray, options_.tilt, mask_);
+    tilts_.push_back(tilt);
+    // A frame without enough vertical edges keeps the last good estimate (the floor changes slowly).
+    level_from_camera_.push_back(
+        tilt.valid ? level_from_camera(tilt)
+                   : (level_from_camera_.empty() ? Eigen::Matrix3d::Identity() : level_from_camera_.back()));
+  }
   // Wrap horizontally (the seam), replicate vertically (the poles are not tracked anyway).
   cv::Mat padded;
   cv::copyMakeBorder(gray, padded, 0, 0, pad_, pad_, cv::BORDER_WRAP);
@@ -118,6 +139,12 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       }
       const float y = to[k].y - pad_;
       if (ok && (y < y_min || y > y_max)) ok = false;
+      if (ok && !mask_.empty()) {  // entering a masked region ends the track
+        int mx = static_cast<int>(std::floor(to[k].x - pad_)) % width_;
+        if (mx < 0) mx += width_;
+        const int my = std::clamp(static_cast<int>(std::floor(y)), 0, height_ - 1);
+        ok = mask_.at<uchar>(my, mx) != 0;
+      }
       continued[k] = ok;
       if (!ok) continue;
       flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
@@ -160,6 +187,15 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
           linear = warps[k].linear;
         } else {
           ++affine_failures_;
+        }
+      }
+      if (!mask_.empty()) {  // the refinement may have moved it into a masked region
+        int mx = static_cast<int>(std::floor(at.x - pad_)) % width_;
+        if (mx < 0) mx += width_;
+        const int my = std::clamp(static_cast<int>(std::floor(at.y - pad_)), 0, height_ - 1);
+        if (!mask_.at<uchar>(my, mx)) {
+          ++stats.lost;
+          continue;
         }
       }
       if (!refined) {
@@ -240,6 +276,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
   if (static_cast<int>(live_.size()) < options_.min_features) {
     cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
     mask.rowRange(static_cast<int>(std::ceil(y_min)), static_cast<int>(std::floor(y_max))).setTo(255);
+    if (!mask_.empty()) cv::bitwise_and(mask, mask_, mask);
     for (int t : live_) {
       const TrackObservation& o = tracks_[t].observations.back();
       cv::circle(mask, cv::Point(cvRound(o.x), cvRound(o.y)), options_.min_distance_px, cv::Scalar(0), -1);
@@ -253,6 +290,11 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.02));
     }
     for (const cv::Point2f& c : corners) {
+      if (!mask_.empty()) {  // the sub-pixel refinement may have moved it into a masked region
+        int mx = static_cast<int>(std::floor(c.x)) % width_;
+        if (mx < 0) mx += width_;
+        if (!mask_.at<uchar>(std::clamp(static_cast<int>(std::floor(c.y)), 0, height_ - 1), mx)) continue;
+      }
       if (affine) {
         LivePatch lp;
         lp.patch = make_affine_patch(padded, cv::Point2d(c.x + pad_, c.y + pad_), options_.affine);

@@ -145,6 +145,60 @@ void RingOptions::check() const {
   require_option(min_peak >= 0.0 && min_peak < 1.0, s + "min_peak", "must be in [0, 1)", min_peak);
 }
 
+std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options,
+                                    const cv::Mat& mask) {
+  if (mask.empty()) return make_ring_image(equirect, options);
+  cv::Mat gray32;
+  grey_image(equirect, "ring image").convertTo(gray32, CV_32F);
+  if (mask.type() != CV_8U || mask.size() != gray32.size())
+    throw Error("ring image: the mask must be 8-bit and the frame's size");
+  const int w = gray32.cols, h = gray32.rows;
+  std::vector<double> ring(w, 0.0), total(w, 0.0);
+  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
+  for (int v = 0; v < h; ++v) {
+    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
+    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
+    if (top <= bottom) continue;
+    const double weight = std::sin(top) - std::sin(bottom);
+    const float* row = gray32.ptr<float>(v);
+    const uchar* m = mask.ptr<uchar>(v);
+    for (int u = 0; u < w; ++u)
+      if (m[u]) {
+        ring[u] += weight * row[u];
+        total[u] += weight;
+      }
+  }
+  double sum = 0.0, weight_sum = 0.0;
+  for (int u = 0; u < w; ++u) {
+    sum += ring[u];
+    weight_sum += total[u];
+  }
+  if (weight_sum <= 0.0) throw Error("ring image: the mask leaves nothing of the latitude band");
+  const double mean = sum / weight_sum;
+  for (int u = 0; u < w; ++u) ring[u] = total[u] > 0 ? ring[u] / total[u] : mean;
+  return ring;
+}
+
+std::vector<double> ring_column_weights(const cv::Mat& mask, const RingOptions& options) {
+  if (mask.empty() || mask.type() != CV_8U) throw Error("ring column weights: the mask must be 8-bit");
+  const int w = mask.cols, h = mask.rows;
+  std::vector<double> usable(w, 0.0);
+  double full = 0.0;
+  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
+  for (int v = 0; v < h; ++v) {
+    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
+    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
+    if (top <= bottom) continue;
+    const double weight = std::sin(top) - std::sin(bottom);
+    full += weight;
+    const uchar* m = mask.ptr<uchar>(v);
+    for (int u = 0; u < w; ++u)
+      if (m[u]) usable[u] += weight;
+  }
+  for (double& x : usable) x = full > 0 ? x / full : 0.0;
+  return usable;
+}
+
 std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options) {
   cv::Mat gray32;
   grey_image(equirect, "ring image").convertTo(gray32, CV_32F);
@@ -212,7 +266,8 @@ RingShift circular_phase_correlation(const std::vector<double>& a, const std::ve
   return r;
 }
 
-RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options) {
+RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options,
+                                 const std::vector<double>* column_weights) {
   options.check();
   RingHeadings out;
   const int n = static_cast<int>(rings.size());
@@ -225,7 +280,12 @@ RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, 
     if (static_cast<int>(r.size()) != w) throw Error("ring headings: rings differ in length");
   const double px_per_rad = w / (2.0 * kPi);
   const double max_step_px = options.max_turn_deg_per_frame * kPi / 180.0 * px_per_rad;
-  const std::vector<double> window = axis_window(w, options.axis_floor);
+  std::vector<double> window = axis_window(w, options.axis_floor);
+  if (column_weights) {
+    if (static_cast<int>(column_weights->size()) != w)
+      throw Error("ring headings: column weights differ in length from the rings");
+    for (int u = 0; u < w; ++u) window[u] *= (*column_weights)[u];
+  }
 
   struct Pair {
     int i, j;  // j > i

@@ -29,6 +29,12 @@ struct RingOptions {
 
 // Ring image of a BGR (CV_8UC3) or gray (CV_8U / CV_32F) equirectangular frame: one value per column.
 std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options);
+// With a mask (CV_8U, the frame's size, 0 = not to use: the trolley, the operator): each column is the mean
+// of its usable rows; a column with none takes the ring's mean (and should get no weight).
+std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options, const cv::Mat& mask);
+// Share of each column's band (by solid angle) that the mask leaves usable, in [0, 1]: column weights for
+// the registration.
+std::vector<double> ring_column_weights(const cv::Mat& mask, const RingOptions& options);
 
 struct RingShift {
   double shift_px = 0.0;  // b(x) ~ a(x - shift): b is a turned right by shift pixels
@@ -59,6 +65,8 @@ struct RingHeadings {
 
 // Registers every ring against several earlier ones (RingOptions::frame_offsets) and solves all headings
 // jointly by robust (iteratively reweighted) least squares.
-RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options);
+// `column_weights` (optional, one per column): multiplies the axis window (ring_column_weights of a mask).
+RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options,
+                                 const std::vector<double>* column_weights = nullptr);
 
 }  // namespace plenopath

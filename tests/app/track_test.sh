@@ -93,6 +93,23 @@ PY
   || fail "track --first 1 --last 2 exit $?: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/cap" --stride 2 --out "$tmp/stride.json" --quiet > /dev/null 2> "$tmp/err.txt" \
   || fail "track --stride 2 exit $?: $(cat "$tmp/err.txt")"
+# An author's mask (a PGM: the left quarter black), --level, and masks that cannot be used.
+/usr/bin/python3 - "$tmp/mask.pgm" 64 32 <<'PY'
+import sys
+w, h = int(sys.argv[2]), int(sys.argv[3])
+rows = bytes(0 if x < w // 4 else 255 for x in range(w)) * h
+open(sys.argv[1], "wb").write(b"P5 %d %d 255\n" % (w, h) + rows)
+PY
+"$cli" track --capture "$tmp/cap" --mask "$tmp/mask.pgm" --level --no-static-mask --out "$tmp/masked.json" --quiet \
+  > /dev/null 2> "$tmp/err.txt" || fail "track --mask exit $?: $(cat "$tmp/err.txt")"
+[[ -s "$tmp/masked.json" ]] || fail "track --mask wrote no path"
+"$cli" track --capture "$tmp/cap" --mask "$tmp/no-such-mask.png" --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "missing mask: exit $code"
+grep -q "no-such-mask.png" "$tmp/err.txt" || fail "missing mask message: $(cat "$tmp/err.txt")"
+/usr/bin/python3 -c "open('$tmp/black.pgm','wb').write(b'P5 8 4 255\n' + bytes(32))"
+"$cli" track --capture "$tmp/cap" --mask "$tmp/black.pgm" --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "all-black mask: exit $code"
+grep -q "black.pgm" "$tmp/err.txt" || fail "all-black mask message: $(cat "$tmp/err.txt")"
 python3 - "$tmp/range.json" "$tmp/stride.json" <<'PY' || fail "range/stride output: $(cat "$tmp/range.json" "$tmp/stride.json")"
 import json, sys
 r = json.load(open(sys.argv[1]))

@@ -1,0 +1,151 @@
+// Tracking under real-capture nuisances (issue 18) on short renders of the office walk against the
+// renderer's ground truth: the trolley and its operator in every frame on plain painted walls (masked
+// automatically, or by the author's mask), and a camera rocking on an uneven floor (bearings levelled per
+// frame). Bounds leave room over what the tracker measured on these renders (noted at each); the long runs
+// with every nuisance are in tests/bench/bench_nuisances.cpp.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "model/error.h"
+#include "processing/egomotion/egomotion.h"
+#include "processing/egomotion/path_evaluation.h"
+#include "rig/synthetic_camera.h"
+
+namespace plenopath {
+namespace {
+
+struct Rendered {
+  CameraPath truth;
+  std::vector<cv::Mat> frames;
+  cv::Mat rig;  // truth: 255 where the trolley or the operator is seen
+};
+
+Rendered render_walk(const SceneOptions& scene_options, const RenderOptions& render, int frames) {
+  Rendered out;
+  const FloorPlan plan = make_office_sample_plan();
+  const SyntheticScene scene = build_synthetic_scene(plan, scene_options);
+  AutoWalkOptions walk;
+  walk.max_frames = frames;
+  out.truth = auto_walk(plan, walk);
+  for (const PathFrame& f : out.truth.frames) out.frames.push_back(render_panorama(scene, f, render).rgb);
+  RenderOptions with = render, without = render;
+  with.depth = without.depth = true;
+  without.trolley = without.operator_person = false;
+  cv::compare(render_panorama(scene, out.truth.frames[0], with).depth,
+              render_panorama(scene, out.truth.frames[0], without).depth, out.rig, cv::CMP_NE);
+  return out;
+}
+
+EgomotionResult track(const Rendered& r, const EgomotionOptions& options) {
+  return EgomotionTracker::run(
+      static_cast<int>(r.frames.size()), [&](int i) { return r.frames[i]; }, options);
+}
+
+RenderOptions small() {
+  RenderOptions render;
+  render.width = 512;
+  render.height = 256;
+  render.depth = false;
+  return render;
+}
+
+const Rendered& trolley_walk() {
+  static const Rendered walk = [] {
+    SceneOptions scene;
+    scene.wall_finish = WallFinish::kPlainPaint;
+    scene.posters = false;
+    RenderOptions render = small();
+    render.trolley = render.operator_person = true;
+    render.noise_sigma = 2.0;
+    return render_walk(scene, render, 80);
+  }();
+  return walk;
+}
+
+TEST(NuisanceTracking, TrolleyAndOperatorOnPlainWallsAreMaskedAutomatically) {
+  const Rendered& walk = trolley_walk();
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  const EgomotionResult r = track(walk, options);
+  ASSERT_EQ(r.path.size(), walk.frames.size());
+  // The mask covers the rig: hardly any rig pixel in the tracked band left usable.
+  ASSERT_FALSE(r.mask.empty());
+  cv::Mat rig;
+  cv::resize(walk.rig, rig, r.mask.size(), 0, 0, cv::INTER_NEAREST);
+  const cv::Range band(r.mask.rows / 10, r.mask.rows * 9 / 10);
+  cv::Mat left;
+  cv::bitwise_and(rig.rowRange(band), r.mask.rowRange(band), left);
+  EXPECT_LT(cv::countNonZero(left), 0.01 * cv::countNonZero(rig.rowRange(band)));
+  EXPECT_GT(r.static_mask_fraction, 0.1);
+  EXPECT_LT(r.static_mask_fraction, 0.4);
+  const PathErrors e = evaluate_path(r.path, walk.truth);
+  EXPECT_EQ(e.frames_matched, static_cast<int>(walk.frames.size()));
+  // Measured on this render: heading 0.043 deg, ATE 0.018 %, scale 0.23 %.
+  EXPECT_LT(e.rot_rms_deg, 0.1);
+  EXPECT_LT(e.ate_pct, 0.06);
+  EXPECT_LT(e.scale_error_pct, 1.0);
+  RecordProperty("heading_rms_deg", std::to_string(e.rot_rms_deg));
+  RecordProperty("ate_pct", std::to_string(e.ate_pct));
+  RecordProperty("scale_error_pct", std::to_string(e.scale_error_pct));
+}
+
+TEST(NuisanceTracking, TheAuthorsMaskIsUsedAsDrawn) {
+  const Rendered& walk = trolley_walk();
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  options.static_mask.frames = 0;  // only the author's mask: the rig region grown by 3 pixels, inverted
+  cv::Mat grown;
+  cv::dilate(walk.rig, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(7, 7)));
+  options.mask = 255 - grown;
+  const EgomotionResult r = track(walk, options);
+  ASSERT_FALSE(r.mask.empty());
+  EXPECT_NEAR(r.static_mask_fraction, cv::countNonZero(grown) / double(grown.total()), 0.01);
+  const PathErrors e = evaluate_path(r.path, walk.truth);
+  // Measured: heading 0.032 deg, ATE 0.016 %.
+  EXPECT_LT(e.rot_rms_deg, 0.1);
+  EXPECT_LT(e.ate_pct, 0.06);
+  EXPECT_LT(e.scale_error_pct, 1.0);
+  RecordProperty("heading_rms_deg", std::to_string(e.rot_rms_deg));
+  RecordProperty("ate_pct", std::to_string(e.ate_pct));
+}
+
+TEST(NuisanceTracking, ARockingCameraIsLevelledPerFrame) {
+  RenderOptions render = small();
+  render.tilt_wobble_deg = 1.0;
+  render.bump_deg = 1.5;
+  const Rendered walk = render_walk(SceneOptions{}, render, 60);
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  options.klt.level_bearings = true;
+  const EgomotionResult r = track(walk, options);
+  const PathErrors e = evaluate_path(r.path, walk.truth);
+  EXPECT_EQ(e.frames_matched, 60);
+  // Measured: heading 0.23 deg, ATE 0.22 %, scale 0.87 % (the tilt estimate's error, 0.1-0.2 deg per frame
+  // at 512 wide, is what is left: the issue's 0.05 deg is not reached yet).
+  EXPECT_LT(e.rot_rms_deg, 0.35);
+  EXPECT_LT(e.ate_pct, 0.35);
+  EXPECT_LT(e.scale_error_pct, 1.5);
+  RecordProperty("heading_rms_deg", std::to_string(e.rot_rms_deg));
+  RecordProperty("ate_pct", std::to_string(e.ate_pct));
+  RecordProperty("scale_error_pct", std::to_string(e.scale_error_pct));
+}
+
+TEST(NuisanceTracking, BadMasksAreReported) {
+  EgomotionOptions options;
+  options.mask = cv::Mat(8, 16, CV_32F);
+  try {
+    options.check();
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("EgomotionOptions.mask must be 8-bit"), std::string::npos)
+        << error.what();
+  }
+  options.mask = cv::Mat(8, 16, CV_8U, cv::Scalar(0));  // nothing left
+  options.static_mask.frames = 0;
+  EgomotionTracker tracker(options);
+  EXPECT_THROW(tracker.add_frame(cv::Mat(128, 256, CV_8UC3, cv::Scalar(50, 60, 70))), Error);
+}
+
+}  // namespace
+}  // namespace plenopath
