@@ -29,6 +29,10 @@ void StaticMaskOptions::check() const {
   require_option(texture_threshold >= 0, s + "texture_threshold", "must be >= 0", texture_threshold);
   require_option(min_textured_pixels >= 0, s + "min_textured_pixels", "must be >= 0", min_textured_pixels);
   require_option(margin_deg >= 0 && margin_deg <= 30, s + "margin_deg", "must be in [0, 30]", margin_deg);
+  require_option(min_region_fraction >= 0 && min_region_fraction < 1, s + "min_region_fraction",
+                 "must be in [0, 1)", min_region_fraction);
+  require_option(min_texture_ratio >= 0 && min_texture_ratio < 1, s + "min_texture_ratio",
+                 "must be in [0, 1)", min_texture_ratio);
   require_option(max_fraction > 0 && max_fraction <= 1, s + "max_fraction", "must be in (0, 1]",
                  max_fraction);
 }
@@ -45,7 +49,20 @@ void StaticMaskEstimator::add(const cv::Mat& frame) {
   cv::GaussianBlur(small, small, cv::Size(3, 3), 0.8, 0.8, cv::BORDER_REPLICATE);
   const double mean = cv::mean(small)[0];
   if (mean > 1.0) small *= 128.0 / mean;  // exposure
+  // A frame with hardly any structure (a lens cap, a blank frame, a wall passed at arm's length) changes
+  // nearly every pixel at once: counted, it would end the wait early and leave unchanged whatever of the
+  // scene matched its flat grey. It says nothing about what moves with the camera; it is skipped.
+  cv::Mat gx, gy, magnitude;
+  cv::Sobel(small, gx, CV_32F, 1, 0, 3, 1.0 / 8);
+  cv::Sobel(small, gy, CV_32F, 0, 1, 3, 1.0 / 8);
+  cv::magnitude(gx, gy, magnitude);
+  const double texture = cv::mean(magnitude)[0];
+  if (frames_ > 0 && texture < options_.min_texture_ratio * first_texture_) {
+    ++skipped_;
+    return;
+  }
   if (frames_ == 0) {
+    first_texture_ = texture;
     first_ = small.clone();
     max_change_ = cv::Mat::zeros(small.size(), CV_32F);
     sum_ = cv::Mat::zeros(small.size(), CV_32F);
@@ -65,7 +82,7 @@ double StaticMaskEstimator::changed_fraction() const {
 }
 
 bool StaticMaskEstimator::ready() const {
-  if (options_.frames == 0 || frames_ >= options_.frames) return true;
+  if (options_.frames == 0 || frames_ + skipped_ >= options_.frames) return true;
   if (frames_ < options_.min_frames) return false;
   const double now = history_.back();
   const double before = history_[history_.size() - 1 - static_cast<std::size_t>(options_.plateau_frames)];
@@ -97,15 +114,23 @@ cv::Mat StaticMaskEstimator::mask(cv::Size size) const {
       const int a = labels.at<int>(v, 0), b = labels.at<int>(v2, w - 1);
       if (a > 0 && b > 0) parent[find(a)] = find(b);
     }
-  std::vector<int> edges(count, 0);
+  std::vector<int> edges(count, 0), area(count, 0);
   for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      if (edge.at<uchar>(v, u)) ++edges[find(labels.at<int>(v, u))];
+    for (int u = 0; u < w; ++u) {
+      const int l = labels.at<int>(v, u);
+      if (l == 0) continue;
+      ++area[find(l)];
+      if (edge.at<uchar>(v, u)) ++edges[find(l)];
+    }
+  // A patch of faint scene texture the camera has not yet moved far enough to change is small; the rig and
+  // the person pushing it are not.
+  const int min_area = static_cast<int>(std::ceil(options_.min_region_fraction * w * h));
   cv::Mat masked(h, w, CV_8U, cv::Scalar(0));
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) {
       const int l = labels.at<int>(v, u);
-      if (l > 0 && edges[find(l)] >= options_.min_textured_pixels) masked.at<uchar>(v, u) = 255;
+      if (l > 0 && edges[find(l)] >= options_.min_textured_pixels && area[find(l)] >= min_area)
+        masked.at<uchar>(v, u) = 255;
     }
   // Grow by the margin, the seam wrapped.
   const int margin = static_cast<int>(std::ceil(options_.margin_deg / (360.0 / w)));

@@ -27,13 +27,16 @@ struct StaticMaskOptions {
   int plateau_frames = 10;
   double plateau_growth = 0.01;
   double min_decided_fraction = 0.3;
-  int width = 128;                 // working width of the estimate (2.8 deg per pixel)
-  double change_threshold = 10.0;  // grey levels (each frame scaled to mean 128) a scene pixel changes by
-  double texture_threshold = 3.0;  // grey levels per pixel of the mean image: a static edge
-  int min_textured_pixels = 3;     // a static region needs this many static edge pixels to be masked
-  double margin_deg = 2.5;         // the mask grows by this much (shake, the rig's outline)
-  double max_fraction = 0.4;       // more than this share static: not trusted, nothing is masked
-  void check() const;              // throws Error naming the bad field
+  int width = 128;                     // working width of the estimate (2.8 deg per pixel)
+  double change_threshold = 10.0;      // grey levels (each frame scaled to mean 128) a scene pixel changes by
+  double texture_threshold = 3.0;      // grey levels per pixel of the mean image: a static edge
+  int min_textured_pixels = 3;         // a static region needs this many static edge pixels to be masked
+  double min_region_fraction = 0.004;  // ... and to cover this share of the image (before the margin)
+  double margin_deg = 2.5;             // the mask grows by this much (shake, the rig's outline)
+  double max_fraction = 0.4;           // more than this share static: not trusted, nothing is masked
+  // Frames whose mean gradient is below this share of the first frame's are skipped (nearly blank).
+  double min_texture_ratio = 0.25;
+  void check() const;  // throws Error naming the bad field
 };
 
 class StaticMaskEstimator {
@@ -41,7 +44,8 @@ class StaticMaskEstimator {
   explicit StaticMaskEstimator(const StaticMaskOptions& options);  // throws Error on bad options
   // A frame (CV_8U or BGR, equirectangular), in capture order.
   void add(const cv::Mat& frame);
-  int frames() const { return frames_; }
+  int frames() const { return frames_; }    // frames used (skipped ones not counted)
+  int skipped() const { return skipped_; }  // nearly blank frames left out
   // Share of the image that has changed since the first frame.
   double changed_fraction() const;
   // Enough frames seen to decide (the camera moved, or options.frames reached).
@@ -52,6 +56,8 @@ class StaticMaskEstimator {
  private:
   StaticMaskOptions options_;
   int frames_ = 0;
+  int skipped_ = 0;
+  double first_texture_ = 0.0;        // mean gradient of the first frame
   cv::Mat first_, max_change_, sum_;  // CV_32F at the working width
   std::vector<double> history_;       // changed_fraction() after each frame
 };

@@ -103,6 +103,29 @@ TEST(StaticMask, KltNeverTracksInsideTheMask) {
   EXPECT_GT(observations, 1000);
 }
 
+// Blank frames early in the walk (a lens cap) change nearly every pixel at once; taken as evidence they would
+// end the wait with the scene's grey pixels "unchanged". They are skipped: the mask is the one the walk
+// without them gives, to the pixel but for the frames it saw.
+TEST(StaticMask, BlankFramesAreNotEvidence) {
+  const RigWalk& walk = rig_walk();
+  StaticMaskOptions options;
+  options.frames = 40;
+  StaticMaskEstimator clean(options), capped(options);
+  const cv::Mat blank(walk.frames[0].size(), walk.frames[0].type(), cv::Scalar::all(90));
+  for (int i = 0; i < 40; ++i) {
+    clean.add(walk.frames[i]);
+    capped.add(i >= 8 && i < 13 ? blank : walk.frames[i]);
+  }
+  EXPECT_EQ(capped.skipped(), 5);
+  EXPECT_EQ(capped.frames(), 35);
+  const cv::Mat a = clean.mask(walk.rig.size()), b = capped.mask(walk.rig.size());
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  // The rig is masked in both; they differ at most on a thin outline (5 of 40 frames less evidence).
+  EXPECT_LT(cv::countNonZero(a != b), 0.01 * a.total());
+  EXPECT_GT(cv::countNonZero((b == 0) & walk.rig), 0.95 * cv::countNonZero(walk.rig));
+}
+
 TEST(StaticMask, BadOptionsAndMasksAreReported) {
   StaticMaskOptions o;
   o.width = 7;
