@@ -80,6 +80,7 @@ Command add_track_command(CLI::App& parent) {
     std::string anchors;                 // anchors file: the path is refined onto them after tracking
     std::string mask;                    // image of the pixels not to use (black), e.g. the trolley
     bool level = false;                  // per-frame pitch/roll from vertical edges
+    double tilt_prior = RefinementOptions{}.tilt_prior_deg;
     bool no_static_mask = false;
   };
   auto options = std::make_shared<Options>();
@@ -117,6 +118,11 @@ Command add_track_command(CLI::App& parent) {
   sub->add_flag(
       "--level", options->level,
       "Estimate pitch and roll per frame from vertical edges (a camera rocking on an uneven floor)");
+  sub->add_option("--tilt-prior", options->tilt_prior,
+                  "Pitch and roll per frame are estimated in the refinement, held near level with this "
+                  "spread in degrees (0: a perfectly level camera)")
+      ->check(CLI::Range(0.0, 20.0))
+      ->capture_default_str();
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
@@ -148,6 +154,7 @@ Command add_track_command(CLI::App& parent) {
         eo.klt.work_width = options->work_width;
         eo.loop.enabled = !options->no_loop_closure;
         eo.klt.level_bearings = options->level;
+        eo.refinement.tilt_prior_deg = options->tilt_prior;
         if (options->no_static_mask) eo.static_mask.frames = 0;
         if (!options->mask.empty()) {
           eo.mask = cv::imread(options->mask, cv::IMREAD_GRAYSCALE);

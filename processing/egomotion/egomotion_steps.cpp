@@ -64,6 +64,55 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
   return inliers;
 }
 
+int resect_tilted_pose(Eigen::Vector3d* pose, Eigen::Vector2d* tilt,
+                       const std::vector<Eigen::Vector3d>& points,
+                       const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold,
+                       double tilt_weight) {
+  using Vector5d = Eigen::Matrix<double, 5, 1>;
+  using Matrix5d = Eigen::Matrix<double, 5, 5>;
+  Vector5d x;
+  x << *pose, *tilt;
+  auto residual = [&](const Vector5d& v, std::size_t k) {
+    const TiltedBearingCost cost(bearings[k]);
+    Eigen::Vector3d r;
+    cost(v.data(), v.data() + 3, points[k].data(), r.data());
+    return r;
+  };
+  for (int it = 0; it < 10; ++it) {
+    Matrix5d jtj = Matrix5d::Zero();
+    Vector5d jtr = Vector5d::Zero();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Eigen::Vector3d r = residual(x, k);
+      Eigen::Matrix<double, 3, 5> j;
+      for (int d = 0; d < 5; ++d) {
+        Vector5d q = x;
+        const double h = 1e-7;
+        q[d] += h;
+        j.col(d) = (residual(q, k) - r) / h;
+      }
+      const double n = r.norm();
+      const double w = n <= huber ? 1.0 : huber / n;
+      jtj += w * j.transpose() * j;
+      jtr += w * j.transpose() * r;
+    }
+    const double w2 = tilt_weight * tilt_weight;
+    jtj(3, 3) += w2;
+    jtj(4, 4) += w2;
+    jtr(3) += w2 * x(3);
+    jtr(4) += w2 * x(4);
+    const Vector5d step = -(jtj + 1e-9 * Matrix5d::Identity()).ldlt().solve(jtr);
+    if (!step.allFinite()) break;
+    x += step;
+    if (step.norm() < 1e-9) break;
+  }
+  *pose = x.head<3>();
+  *tilt = x.tail<2>();
+  int inliers = 0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    inliers += tilted_ray_error(*pose, *tilt, points[k], bearings[k]) < inlier_threshold;
+  return inliers;
+}
+
 int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,
                       std::vector<int>* point_of_track) {
   std::vector<int> parent(problem->points.size());

@@ -24,6 +24,12 @@ double ray_error(const Eigen::Vector3d& pose, const Eigen::Vector3d& point, cons
 // Pose-only Gauss-Newton (x, y, heading) on angular residuals with a Huber weight. Returns the inlier count.
 int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& points,
                 const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold);
+// The same for a camera that may be tilted: (x, y, heading) and tilt = (pitch, roll) (bearing_cost.h), the
+// tilt held near level by residuals tilt_weight * tilt (as the refinement's prior). Returns the inlier count.
+int resect_tilted_pose(Eigen::Vector3d* pose, Eigen::Vector2d* tilt,
+                       const std::vector<Eigen::Vector3d>& points,
+                       const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold,
+                       double tilt_weight);
 // Merges the points of each verified pair of tracks (union-find; the earlier point stays), rewrites the
 // observations and the track-to-point map. Returns how many points were merged away.
 int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,

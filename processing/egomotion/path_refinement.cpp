@@ -78,21 +78,37 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
     if (o.pose >= first && o.pose <= last) ++count[o.point];
   int residuals = 0;
   std::vector<bool> pose_used(p.poses.size(), false);
+  const bool tilted = !p.tilts.empty();
   for (const BundleObservation& o : p.observations) {
     if (o.pose < first || o.pose > last || count[o.point] < 2) continue;
-    problem.AddResidualBlock(PlanarBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
-                             p.points[o.point].data());
+    if (tilted) {
+      problem.AddResidualBlock(TiltedBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
+                               p.tilts[o.pose].data(), p.points[o.point].data());
+    } else {
+      problem.AddResidualBlock(PlanarBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
+                               p.points[o.point].data());
+    }
     pose_used[o.pose] = true;
     ++residuals;
   }
   if (residuals == 0) return;
+  // The prior's weight: a tilt of one prior spread costs as much as one observation at the loss scale.
+  const double tilt_weight = tilted ? options.loss_scale / (options.tilt_prior_deg * M_PI / 180.0) : 0.0;
   bool any_free = false;
   for (int i = first; i <= last; ++i) {
     if (!pose_used[i]) continue;
-    if (i < held_end || i == 0 || i >= held_from) {
+    const bool held = i < held_end || i == 0 || i >= held_from;
+    if (held) {
       problem.SetParameterBlockConstant(p.poses[i].data());
     } else {
       any_free = true;
+    }
+    if (tilted) {
+      problem.AddResidualBlock(TiltPrior::Create(tilt_weight), nullptr, p.tilts[i].data());
+      // Pose 0 holds the gauge of the plane only: its tilt is measured like any other. A window's held
+      // poses were solved by the window before, tilt and all.
+      if (held && i != 0) problem.SetParameterBlockConstant(p.tilts[i].data());
+      if (i == 0) any_free = true;
     }
   }
   // Scale gauge: when fewer than two poses are held, hold the distance from the first used pose to the
@@ -196,6 +212,8 @@ void RefinementOptions::check() const {
                  global_max_iterations);
   require_option(threads >= 1, s + "threads", "must be >= 1", threads);
   require_option(outlier_threshold >= 0, s + "outlier_threshold", "must be >= 0", outlier_threshold);
+  require_option(tilt_prior_deg >= 0 && tilt_prior_deg <= 20, s + "tilt_prior_deg", "must be in [0, 20]",
+                 tilt_prior_deg);
   require_option(global_max_observations >= 0, s + "global_max_observations", "must be >= 0 (0 = no limit)",
                  global_max_observations);
 }
@@ -206,6 +224,10 @@ std::vector<double> observation_errors(const BundleProblem& p) {
   for (const BundleObservation& o : p.observations) {
     const Eigen::Vector3d& q = p.points[o.point];
     const Eigen::Vector3d& c = p.poses[o.pose];
+    if (!p.tilts.empty()) {
+      e.push_back(tilted_ray_error(c, p.tilts[o.pose], q, o.bearing));
+      continue;
+    }
     const double ch = std::cos(c.z()), sh = std::sin(c.z());
     const Eigen::Vector3d d(ch * (q.x() - c.x()) + sh * (q.y() - c.y()),
                             -sh * (q.x() - c.x()) + ch * (q.y() - c.y()), q.z());
@@ -219,6 +241,9 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
   options.check();
   quiet_ceres_logging();
   RefinementReport report;
+  if (options.tilt_prior_deg > 0 && problem.tilts.size() != problem.poses.size())
+    problem.tilts.assign(problem.poses.size(), Eigen::Vector2d::Zero());
+  if (options.tilt_prior_deg == 0) problem.tilts.clear();
   report.initial_rms = rms(observation_errors(problem));
   const int n = static_cast<int>(problem.poses.size());
   if (n < 2) {

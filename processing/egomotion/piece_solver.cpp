@@ -280,7 +280,10 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
          it != keyframes.end() && *it <= to.back().frame; ++it) {
       const int k = static_cast<int>(it - keyframes.begin());
       const Eigen::Vector3d b = bearing(t, *it);
-      if (ray_error(kf_pose[k], point[t], b) > opt.max_initial_error_deg * coarseness * kDeg) continue;
+      // A tilted camera's bearings are off the planar model by up to its tilt until the refinement knows it.
+      if (ray_error(kf_pose[k], point[t], b) >
+          (opt.max_initial_error_deg * coarseness + refinement.tilt_prior_deg) * kDeg)
+        continue;
       obs.push_back({k, static_cast<int>(problem.points.size()), b});
     }
     if (static_cast<int>(obs.size()) < opt.min_point_keyframes) continue;
@@ -348,6 +351,19 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   // against them pulls a frame towards the coarse chain.
   std::vector<char> point_alive(problem.points.size(), 0);
   for (const auto& o : problem.observations) point_alive[o.point] = 1;
+  // Tilts (when the refinement estimated them): keyframes' as refined, other frames resected with five
+  // degrees of freedom from their keyframes' interpolated tilt.
+  const bool tilted = !problem.tilts.empty();
+  const double tilt_weight = tilted ? refinement.loss_scale / (refinement.tilt_prior_deg * kDeg) : 0.0;
+  auto interpolated_tilt = [&](int f) -> Eigen::Vector2d {
+    const int k1 =
+        static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
+    if (k1 >= kfn) return problem.tilts[kfn - 1];
+    const int k0 = std::max(0, k1 - 1);
+    const double w =
+        keyframes[k1] > keyframes[k0] ? double(f - keyframes[k0]) / (keyframes[k1] - keyframes[k0]) : 0.0;
+    return (1 - w) * problem.tilts[k0] + w * problem.tilts[k1];
+  };
   std::vector<Eigen::Vector3d> pose(count);
   const double inlier_threshold = std::max(4.0 * refinement.loss_scale, 3.0 * m.pixel_angle);
   for (int f = first; f <= last; ++f) {
@@ -368,7 +384,10 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
                "bridged: no track crosses this stretch (its two sides matched by descriptors)");
     } else if (static_cast<int>(pts.size()) >= opt.resection_min_points) {
       Eigen::Vector3d p = pf;
-      const int inliers = resect_pose(&p, pts, brs, refinement.loss_scale, inlier_threshold);
+      Eigen::Vector2d tilt = tilted ? interpolated_tilt(f) : Eigen::Vector2d::Zero();
+      const int inliers = tilted ? resect_tilted_pose(&p, &tilt, pts, brs, refinement.loss_scale,
+                                                      inlier_threshold, tilt_weight)
+                                 : resect_pose(&p, pts, brs, refinement.loss_scale, inlier_threshold);
       // The frame lies between its keyframes: a resection that lands farther from the interpolated pose
       // than the keyframe step (or turns more than the tracked turn allows) has slipped.
       const int k1 =

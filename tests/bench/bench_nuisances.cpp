@@ -4,9 +4,10 @@
 // together), encodes the frames as JPEG in memory, tracks them with the camera-height scale and prints one
 // JSON object with, per nuisance: heading RMS (rings and refined), ATE (m and % of the path length), metric
 // scale error and the flagged frames. Usage: bench_nuisances [--frames N] [--width W] [--only NAME]
-// [--mask-frames N] [--level]
+// [--mask-frames N] [--level] [--tilt-prior DEG]
 //   (--mask-frames: EgomotionOptions::static_mask.frames, 0 turns the automatic static mask off;
-//   --level: KltOptions::level_bearings, per-frame pitch/roll from vertical edges)
+//   --level: KltOptions::level_bearings, per-frame pitch/roll from vertical edges;
+//   --tilt-prior: RefinementOptions::tilt_prior_deg, pitch/roll per frame estimated in the refinement)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -100,7 +101,8 @@ double heading_rms_deg(const std::vector<double>& estimate, const CameraPath& tr
   return degrees(std::sqrt(s2 / estimate.size()));
 }
 
-nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_frames, bool level) {
+nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_frames, bool level,
+                   double tilt_prior) {
   const FloorPlan plan = make_office_sample_plan();
   SceneOptions scene_options;
   RenderOptions render;
@@ -123,6 +125,7 @@ nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_fra
   options.camera_height_m = scene_options.camera_height;
   if (mask_frames >= 0) options.static_mask.frames = mask_frames;
   options.klt.level_bearings = level;
+  if (tilt_prior >= 0) options.refinement.tilt_prior_deg = tilt_prior;
   const auto t0 = std::chrono::steady_clock::now();
   const EgomotionResult r = EgomotionTracker::run(
       static_cast<int>(truth.size()), [&](int i) { return cv::imdecode(jpegs[i], cv::IMREAD_COLOR); },
@@ -142,6 +145,7 @@ nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_fra
           {"flagged_frames", r.flagged_frames},
           {"static_mask_pixels_pct", r.static_mask_fraction * 100.0},
           {"level_bearings", level},
+          {"tilt_prior_deg", options.refinement.tilt_prior_deg},
           {"seconds_render", render_s},
           {"seconds_track", track_s}};
 }
@@ -151,6 +155,7 @@ nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_fra
 int main(int argc, char** argv) {
   int frames = 300, width = 1024, mask_frames = -1;
   bool level = false;
+  double tilt_prior = -1;  // < 0: the default
   std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
@@ -163,13 +168,15 @@ int main(int argc, char** argv) {
       mask_frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--level"))
       level = true;
+    else if (!std::strcmp(argv[i], "--tilt-prior") && i + 1 < argc)
+      tilt_prior = std::atof(argv[++i]);
   }
   nlohmann::json out;
   out["benchmark"] = "track_nuisances";
   try {
     for (const Nuisance& n : nuisances()) {
       if (!only.empty() && n.name != only) continue;
-      out["runs"].push_back(run(n, frames, width, mask_frames, level));
+      out["runs"].push_back(run(n, frames, width, mask_frames, level, tilt_prior));
       std::cerr << out["runs"].back().dump() << "\n";
     }
   } catch (const std::exception& e) {

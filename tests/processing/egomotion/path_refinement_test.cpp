@@ -19,10 +19,13 @@ namespace {
 
 struct Synthetic {
   std::vector<Eigen::Vector3d> truth_poses;
-  BundleProblem problem;  // starting values drifted
+  std::vector<Eigen::Vector2d> truth_tilts;  // (pitch, roll) radians
+  BundleProblem problem;                     // starting values drifted
 };
 
-Synthetic make_problem(std::uint32_t seed) {
+// tilt_deg > 0: each camera rocks (pitch and roll up to about tilt_deg, smooth plus a jolt per pose), its
+// bearings made with Eigen's rotations world_from_camera = Rz(heading) Ry(pitch) Rx(roll).
+Synthetic make_problem(std::uint32_t seed, double tilt_deg = 0.0, int point_count = 3000) {
   Synthetic s;
   std::mt19937 rng(seed);
   std::normal_distribution<double> bearing_noise(0.0, 0.0005), jitter(0.0, 1.0);
@@ -33,9 +36,12 @@ Synthetic make_problem(std::uint32_t seed) {
     const double x = t, y = 1.5 * std::sin(0.2 * t);
     const double heading = std::atan2(0.3 * std::cos(0.2 * t), 1.0);
     s.truth_poses.emplace_back(x, y, heading);
+    const double a = tilt_deg * M_PI / 180.0;
+    s.truth_tilts.emplace_back(a * (0.6 * std::sin(0.9 * t) + 0.4 * (2 * uniform(rng) - 1)),
+                               a * (0.6 * std::cos(1.3 * t) + 0.4 * (2 * uniform(rng) - 1)));
   }
   std::vector<Eigen::Vector3d> points;
-  for (int q = 0; q < 3000; ++q) {
+  for (int q = 0; q < point_count; ++q) {
     const double t = uniform(rng) * 24.0;
     const double side = uniform(rng) < 0.5 ? -1.0 : 1.0;
     points.emplace_back(t, 1.5 * std::sin(0.2 * t) + side * (1.5 + 2.0 * uniform(rng)),
@@ -46,8 +52,12 @@ Synthetic make_problem(std::uint32_t seed) {
       const Eigen::Vector3d& c = s.truth_poses[i];
       const Eigen::Vector3d d(points[q].x() - c.x(), points[q].y() - c.y(), points[q].z());
       if (d.head<2>().norm() > 3.0) continue;
-      const double ch = std::cos(c.z()), sh = std::sin(c.z());
-      Eigen::Vector3d b(ch * d.x() + sh * d.y(), -sh * d.x() + ch * d.y(), d.z());
+      const Eigen::Matrix3d world_from_camera =
+          (Eigen::AngleAxisd(c.z(), Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(s.truth_tilts[i].x(), Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(s.truth_tilts[i].y(), Eigen::Vector3d::UnitX()))
+              .toRotationMatrix();
+      Eigen::Vector3d b = world_from_camera.transpose() * d;
       b = (b.normalized() + Eigen::Vector3d(bearing_noise(rng), bearing_noise(rng), bearing_noise(rng)))
               .normalized();
       s.problem.observations.push_back({i, q, b});
@@ -99,6 +109,49 @@ TEST(PathRefinement, ThinnedGlobalPassReachesTheFullOne) {
   EXPECT_LT(ate[1], 2.0 * ate[0] + 0.001);
 }
 
+// A rocking camera (pitch and roll up to about 1.5 deg): the planar model bends the path to explain the
+// tilt; estimating each pose's tilt (with a weak prior towards level) recovers poses and tilts.
+TEST(PathRefinement, TiltedCamerasAreLevelledByTheRefinement) {
+  double ate[3], heading[3];
+  Synthetic tilted;
+  for (int estimate = 0; estimate < 3; ++estimate) {
+    Synthetic s = make_problem(11, estimate < 2 ? 1.5 : 0.0, 1200);
+    RefinementOptions options;
+    options.tilt_prior_deg = estimate == 1 ? 2.0 : 0.0;
+    refine_bundle(s.problem, options);
+    CameraPath a, b;
+    for (std::size_t i = 0; i < s.truth_poses.size(); ++i) {
+      const Eigen::Vector3d& e = s.problem.poses[i];
+      const Eigen::Vector3d& t = s.truth_poses[i];
+      a.frames.push_back({static_cast<int>(i), "", e.x(), e.y(), e.z(), 1.0, 0, ""});
+      b.frames.push_back({static_cast<int>(i), "", t.x(), t.y(), t.z(), 1.0, 0, ""});
+    }
+    const PathErrors ev = evaluate_path(a, b);
+    ate[estimate] = ev.ate_rms_m;
+    heading[estimate] = ev.rot_rms_deg;
+    if (estimate == 1) tilted = std::move(s);
+  }
+  ASSERT_EQ(tilted.problem.tilts.size(), tilted.truth_tilts.size());
+  double tilt_sq = 0, truth_sq = 0;
+  for (std::size_t i = 0; i < tilted.truth_tilts.size(); ++i) {
+    tilt_sq += (tilted.problem.tilts[i] - tilted.truth_tilts[i]).squaredNorm();
+    truth_sq += tilted.truth_tilts[i].squaredNorm();
+  }
+  const double tilt_rms_deg = std::sqrt(tilt_sq / tilted.truth_tilts.size()) * 180 / M_PI;
+  const double truth_rms_deg = std::sqrt(truth_sq / tilted.truth_tilts.size()) * 180 / M_PI;
+  std::printf(
+      "rocking cameras (tilt RMS %.2f deg): planar ATE %.4f m heading %.3f deg; tilted ATE %.4f m "
+      "heading %.3f deg, tilt error RMS %.3f deg\n",
+      truth_rms_deg, ate[0], heading[0], ate[1], heading[1], tilt_rms_deg);
+  std::printf("level cameras, planar: ATE %.4f m heading %.3f deg\n", ate[2], heading[2]);
+  // Seen: tilt error 0.019 deg; tilted 0.017 m / 0.31 deg, as good as the same cameras level (0.016 m /
+  // 0.30 deg: what this drifted start allows); the planar model 0.065 m / 0.83 deg.
+  EXPECT_LT(tilt_rms_deg, 0.05);
+  EXPECT_LT(ate[1], 1.2 * ate[2] + 0.001);
+  EXPECT_LT(heading[1], 1.2 * heading[2] + 0.01);
+  EXPECT_GT(ate[0], 2 * ate[1]);
+}
+
 // Cancelled at its first report (Ceres' first iteration), the refinement stops the solver and ends with
 // Cancelled after that one iteration, not after the dozens it needs.
 TEST(PathRefinement, CancelAfterTheFirstReportStopsTheSolver) {
@@ -116,6 +169,9 @@ TEST(PathRefinement, OptionsAreChecked) {
   RefinementOptions o;
   EXPECT_NO_THROW(o.check());
   o.global_max_observations = -1;
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.tilt_prior_deg = -1;
   EXPECT_THROW(o.check(), Error);
 }
 
