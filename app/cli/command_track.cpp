@@ -82,6 +82,7 @@ Command add_track_command(CLI::App& parent) {
     bool level = false;                  // per-frame pitch/roll from vertical edges
     double tilt_prior = RefinementOptions{}.tilt_prior_deg;
     bool no_static_mask = false;
+    std::string mask_out;  // the mask used, written as an image
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub =
@@ -113,6 +114,9 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--mask", options->mask,
                   "Mask image (any size, resized to the frames): black pixels are not used (the trolley, "
                   "the operator); combined with the automatic static-region mask");
+  sub->add_option("--mask-out", options->mask_out,
+                  "Write the mask the tracker used (the author's and the automatic one; white = used) as an "
+                  "image, to check it or to edit it into a --mask");
   sub->add_flag("--no-static-mask", options->no_static_mask,
                 "Do not mask image regions that stay put while the camera moves (trolley, operator)");
   sub->add_flag(
@@ -204,6 +208,11 @@ Command add_track_command(CLI::App& parent) {
           residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
         }
         if (!options->out.empty()) write_path_file(r.path, options->out);
+        if (!options->mask_out.empty()) {
+          const cv::Mat used = r.mask.empty() ? cv::Mat(1, 2, CV_8U, cv::Scalar(255)) : r.mask;
+          if (!cv::imwrite(options->mask_out, used))
+            throw Error(options->mask_out + ": cannot write the mask");
+        }
         nlohmann::json pieces = nlohmann::json::array();
         for (int k = 0; k < r.path.piece_count(); ++k) {
           const CameraPath piece = r.path.piece_path(k);
@@ -232,6 +241,7 @@ Command add_track_command(CLI::App& parent) {
                                         {"length", r.path.length()},
                                         {"scale_source", r.scale_source},
                                         {"flagged_frames", r.flagged_frames},
+                                        {"masked_pct", 100.0 * r.static_mask_fraction},
                                         {"loop_closures", r.loop_closures},
                                         {"loop_frames", r.loop_frames},
                                         {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},

@@ -100,9 +100,28 @@ w, h = int(sys.argv[2]), int(sys.argv[3])
 rows = bytes(0 if x < w // 4 else 255 for x in range(w)) * h
 open(sys.argv[1], "wb").write(b"P5 %d %d 255\n" % (w, h) + rows)
 PY
-"$cli" track --capture "$tmp/cap" --mask "$tmp/mask.pgm" --level --no-static-mask --out "$tmp/masked.json" --quiet \
-  > /dev/null 2> "$tmp/err.txt" || fail "track --mask exit $?: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --mask "$tmp/mask.pgm" --level --no-static-mask --out "$tmp/masked.json" \
+  --mask-out "$tmp/used.pgm" --tilt-prior 0 --json > "$tmp/masked-summary.json" 2> "$tmp/err.txt" \
+  || fail "track --mask exit $?: $(cat "$tmp/err.txt")"
 [[ -s "$tmp/masked.json" ]] || fail "track --mask wrote no path"
+# The mask written back is the author's at the working size: the left quarter unused, the rest used.
+/usr/bin/python3 - "$tmp/used.pgm" "$tmp/masked-summary.json" <<'PY' || fail "--mask-out: $(cat "$tmp/masked-summary.json")"
+import json, sys
+data = open(sys.argv[1], "rb").read()
+fields = data.split(maxsplit=4)
+assert fields[0] == b"P5", fields[:4]
+w, h = int(fields[1]), int(fields[2])
+pixels = fields[4][-w * h:]
+assert w == 2 * h and w >= 64, (w, h)
+for y in (0, h // 2, h - 1):
+    row = pixels[y * w:(y + 1) * w]
+    assert all(v == 0 for v in row[: w // 4 - 1]) and all(v == 255 for v in row[w // 4 + 1:]), (y, row)
+s = json.load(open(sys.argv[2]))
+assert abs(s["masked_pct"] - 25.0) < 1.0, s["masked_pct"]
+PY
+"$cli" track --capture "$tmp/cap" --tilt-prior 30 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 2 ]] || fail "--tilt-prior 30: exit $code"
+grep -q -- "--tilt-prior" "$tmp/err.txt" || fail "--tilt-prior message: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/cap" --mask "$tmp/no-such-mask.png" --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing mask: exit $code"
 grep -q "no-such-mask.png" "$tmp/err.txt" || fail "missing mask message: $(cat "$tmp/err.txt")"
