@@ -116,7 +116,7 @@ def bench_scene(scene, args):
                 "true_pieces": [[p["first_index"], p["last_index"]] for p in truth["true_pieces"]]})
     frames_dir = os.path.join(res, "frames_partial") if last is not None else os.path.join(d, "frames")
     cmd = [args.plenopath, "track", "--capture", frames_dir, "--camera-height",
-           str(truth["camera_height_m"]), "--out", estimate, "--json", "--quiet"]
+           str(truth["camera_height_m"]), "--out", estimate, "--json", "--quiet"] + args.track_args.split()
     corpus.log("%s: tracking %d frames" % (scene, len(truth["frames"])))
     t0 = time.time()
     p = run(cmd)
@@ -175,11 +175,13 @@ def main():
     ap.add_argument("--no-render", action="store_true")
     ap.add_argument("--partial", action="store_true",
                     help="score scenes still rendering on their longest rendered prefix (marked partial)")
+    ap.add_argument("--track-args", default="",
+                    help="more options for plenopath track, e.g. \"--tilt-prior 0\" (to compare in one run)")
     args = ap.parse_args()
     if os.environ.get("PLENOPATH_BENCH_QUICK") == "1":
         args.no_render = True
     report = {"benchmark": "povray_track", "commit": git_commit(), "load_before": loadavg(),
-              "targets": TARGETS, "cache": corpus.cache_root(), "scenes": []}
+              "targets": TARGETS, "cache": corpus.cache_root(), "track_args": args.track_args, "scenes": []}
     t0 = time.time()
     for scene in [s for s in args.scenes.split(",") if s]:
         if scene not in corpus.SCENES:
