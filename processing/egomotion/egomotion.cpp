@@ -271,6 +271,10 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
     }
     result.keyframes.insert(result.keyframes.end(), solved.keyframes.begin(), solved.keyframes.end());
     result.points += solved.points;
+    for (PathPoint p : solved.tracked_points) {
+      p.piece = k;
+      result.tracked_points.push_back(p);
+    }
     result.observations += solved.observations;
     result.merged_points += solved.merged_points;
     result.loop_closures += static_cast<int>(solved.loop_frames.size());

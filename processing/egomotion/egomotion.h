@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "model/camera_path.h"
+#include "model/path_points.h"
 #include "processing/egomotion/klt_tracks.h"
 #include "processing/egomotion/loop_closure.h"
 #include "processing/egomotion/path_refinement.h"
@@ -105,6 +106,10 @@ struct EgomotionResult {
   std::vector<int> keyframes;                 // frame indices
   int points = 0;
   int observations = 0;
+  // The refined points that kept an observation, each in its piece's frame (that of its poses: metric,
+  // camera centres at z = 0, the floor at z = -camera height), with its piece and observation count. What
+  // registration on the plan (processing/registration) fits to the walls.
+  std::vector<PathPoint> tracked_points;
   RefinementReport refinement;
   int loop_closures = 0;                         // places recognised as revisited (frame pairs)
   std::vector<std::pair<int, int>> loop_frames;  // those pairs: (earlier frame, later frame)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/camera_path.h"
+#include "model/path_points.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/klt_tracks.h"
 #include "processing/egomotion/loop_closure.h"
@@ -89,6 +90,8 @@ struct PieceSolution {
   std::vector<Eigen::Vector3d> poses;   // (x, y, heading) per frame of the piece, metric, own gauge
   std::vector<Eigen::Vector3d> coarse;  // step 2's, same scale and gauge
   std::vector<int> keyframes;           // capture frames
+  // The refined points (each with at least one observation left), same scale and gauge as the poses.
+  std::vector<PathPoint> tracked_points;
   int points = 0, observations = 0, merged_points = 0, floor_points = 0;
   RefinementReport refinement;
   std::vector<std::pair<int, int>> loop_frames;

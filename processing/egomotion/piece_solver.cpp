@@ -472,6 +472,19 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     result.poses[i] = gauge(pose[i], pose[0]);
     result.coarse[i] = gauge(coarse[i], coarse[0]);
   }
+  // ... and the refined points with it (the same gauge as the poses, z scaled alike: floor at -h).
+  std::vector<int> seen_by(problem.points.size(), 0);
+  for (const auto& o : problem.observations) ++seen_by[o.point];
+  result.tracked_points.reserve(problem.points.size());
+  for (std::size_t i = 0; i < problem.points.size(); ++i) {
+    if (seen_by[i] == 0) continue;
+    const Eigen::Vector3d& q = problem.points[i];
+    PathPoint p;
+    p.position =
+        rotate_z(Eigen::Vector3d(q.x() - pose[0].x(), q.y() - pose[0].y(), q.z()), -pose[0].z()) * scale;
+    p.observations = seen_by[i];
+    result.tracked_points.push_back(p);
+  }
   report("resection", 1.0);
   return result;
 }

@@ -1,0 +1,35 @@
+#pragma once
+// The points the tracker triangulated (processing/egomotion), kept with the path so that the path can be
+// registered on the plan later (processing/registration). Each point is in the frame of its piece of the
+// path (CameraPath::pieces; the same frame as that piece's poses), metric, with z measured from the camera
+// centre (the floor lies at z = -camera height).
+//
+// Sidecar file (the project file has no place for thousands of points): PROJECT.plenopath's points are in
+// PROJECT.points.json next to it (points_file_for_project()):
+//   {"format":"plenopath-path-points","version":1,"units":"m",
+//    "points":[[x, y, z, piece, observations], ...]}
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace plenopath {
+
+struct PathPoint {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // metres, the piece's frame; camera centre at z = 0
+  int piece = 0;                                       // CameraPath::pieces index (0 for a one-piece path)
+  int observations = 0;                                // keyframe observations that measured it
+};
+bool operator==(const PathPoint& l, const PathPoint& r);
+
+// Throws Error naming the file (unreadable, not a points file, a bad entry with its position).
+std::vector<PathPoint> read_path_points_file(const std::string& file);
+// Written atomically; throws Error naming the file.
+void write_path_points_file(const std::vector<PathPoint>& points, const std::string& file);
+// "dir/P.plenopath" -> "dir/P.points.json".
+std::string points_file_for_project(const std::string& project_file);
+
+// Moves the points of `piece` by the same similarity as its poses (placed = s R p + t, z scaled by s).
+void transform_piece_points(std::vector<PathPoint>* points, int piece, double rotation, double scale,
+                            const Eigen::Vector2d& translation);
+
+}  // namespace plenopath
