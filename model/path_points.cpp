@@ -52,12 +52,10 @@ void write_path_points_file(const std::vector<PathPoint>& points, const std::str
   write_file_atomically(file, o.str(), false);
 }
 
-std::string points_file_for_project(const std::string& project_file) {
-  const std::string suffix = ".plenopath";
-  std::string base = project_file;
-  if (base.size() >= suffix.size() && base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0)
-    base.resize(base.size() - suffix.size());
-  return base + ".points.json";
+std::string points_file_beside(const std::string& file) {
+  const std::size_t slash = file.find_last_of("/\\"), dot = file.find_last_of('.');
+  const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
+  return (has_extension ? file.substr(0, dot) : file) + ".points.json";
 }
 
 void transform_piece_points(std::vector<PathPoint>* points, int piece, double rotation, double scale,

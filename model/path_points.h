@@ -5,7 +5,8 @@
 // centre (the floor lies at z = -camera height).
 //
 // Sidecar file (the project file has no place for thousands of points): PROJECT.plenopath's points are in
-// PROJECT.points.json next to it (points_file_for_project()):
+// PROJECT.points.json next to it, a path file PATH.json's in PATH.points.json (points_file_beside()); they
+// are in the frame of the path as tracked or registered (anchor refinement bends the path, not them):
 //   {"format":"plenopath-path-points","version":1,"units":"m",
 //    "points":[[x, y, z, piece, observations], ...]}
 #include <Eigen/Core>
@@ -25,8 +26,8 @@ bool operator==(const PathPoint& l, const PathPoint& r);
 std::vector<PathPoint> read_path_points_file(const std::string& file);
 // Written atomically; throws Error naming the file.
 void write_path_points_file(const std::vector<PathPoint>& points, const std::string& file);
-// "dir/P.plenopath" -> "dir/P.points.json".
-std::string points_file_for_project(const std::string& project_file);
+// "dir/P.plenopath" -> "dir/P.points.json", "dir/path.json" -> "dir/path.points.json".
+std::string points_file_beside(const std::string& file);
 
 // Moves the points of `piece` by the same similarity as its poses (placed = s R p + t, z scaled by s).
 void transform_piece_points(std::vector<PathPoint>* points, int piece, double rotation, double scale,

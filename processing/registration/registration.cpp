@@ -1,0 +1,298 @@
+#include "processing/registration/registration.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "model/error.h"
+#include "model/option_check.h"
+#include "processing/registration/registration_internal.h"
+
+namespace plenopath {
+
+using namespace registration_detail;
+
+void RegistrationOptions::check() const {
+  const std::string s = "RegistrationOptions.";
+  require_option(camera_height_m > 0, s + "camera_height_m", "must be > 0", camera_height_m);
+  require_option(floor_margin_m >= 0, s + "floor_margin_m", "must be >= 0", floor_margin_m);
+  require_option(ceiling_height_m == 0 || ceiling_height_m > camera_height_m, s + "ceiling_height_m",
+                 "must be 0 (estimated) or above camera_height_m", ceiling_height_m);
+  require_option(ceiling_margin_m >= 0, s + "ceiling_margin_m", "must be >= 0", ceiling_margin_m);
+  require_option(min_observations >= 0, s + "min_observations", "must be >= 0", min_observations);
+  require_option(cell_m >= 0.005 && cell_m <= 0.5, s + "cell_m", "must be in [0.005, 0.5]", cell_m);
+  require_option(coarse_cell_m >= cell_m, s + "coarse_cell_m", "must be >= cell_m", coarse_cell_m);
+  require_option(rotation_step_deg > 0 && rotation_step_deg <= 45, s + "rotation_step_deg",
+                 "must be in (0, 45]", rotation_step_deg);
+  require_option(scale_range >= 0 && scale_range < 0.5, s + "scale_range", "must be in [0, 0.5)",
+                 scale_range);
+  require_option(scale_prior_sigma > 0, s + "scale_prior_sigma", "must be > 0", scale_prior_sigma);
+  require_option(inlier_tolerance_m > 0, s + "inlier_tolerance_m", "must be > 0", inlier_tolerance_m);
+  require_option(free_space_weight >= 0, s + "free_space_weight", "must be >= 0", free_space_weight);
+  require_option(refine_candidates >= 1, s + "refine_candidates", "must be >= 1", refine_candidates);
+  require_option(max_candidates >= 1, s + "max_candidates", "must be >= 1", max_candidates);
+  require_option(distinct_rotation_deg >= 0, s + "distinct_rotation_deg", "must be >= 0",
+                 distinct_rotation_deg);
+  require_option(distinct_translation_m >= 0, s + "distinct_translation_m", "must be >= 0",
+                 distinct_translation_m);
+  require_option(icp_iterations >= 0, s + "icp_iterations", "must be >= 0", icp_iterations);
+  require_option(huber_m > 0, s + "huber_m", "must be > 0", huber_m);
+  require_option(min_score >= 0 && min_score <= 1, s + "min_score", "must be in [0, 1]", min_score);
+  require_option(min_wall_points >= 3, s + "min_wall_points", "must be >= 3", min_wall_points);
+}
+
+double PieceRegistration::ambiguity_ratio() const {
+  if (candidates.size() < 2 || candidates[1].score <= 0) return std::numeric_limits<double>::infinity();
+  return candidates[0].score / candidates[1].score;
+}
+
+bool RegistrationResult::all_ok() const {
+  for (const PieceRegistration& p : pieces)
+    if (!p.ok) return false;
+  return !pieces.empty();
+}
+
+namespace {
+
+int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
+
+// The ceiling above the floor: the densest 10 cm band of the points above the camera, when it stands out
+// (ceiling points crowd at one height, wall points spread: three times the median band); otherwise camera
+// height + 1 m.
+double estimate_ceiling(const std::vector<const PathPoint*>& points, const RegistrationOptions& options) {
+  if (options.ceiling_height_m > 0) return options.ceiling_height_m;
+  const double fallback = options.camera_height_m + 1.0;
+  std::map<int, int> bins;
+  int above = 0;
+  for (const PathPoint* p : points) {
+    const double z = p->position.z();
+    if (z < 0.2 || z > 10.0) continue;
+    ++bins[static_cast<int>(std::floor(z / 0.1))];
+    ++above;
+  }
+  if (above < 30 || bins.size() < 3) return fallback;
+  int best_bin = 0, best = 0;
+  for (const auto& [bin, count] : bins)
+    if (count > best) {
+      best = count;
+      best_bin = bin;
+    }
+  std::vector<int> counts;
+  for (const auto& [bin, count] : bins) counts.push_back(count);
+  std::nth_element(counts.begin(), counts.begin() + counts.size() / 2, counts.end());
+  if (best < 3 * counts[counts.size() / 2]) return fallback;
+  // The mean height of the points in the band and its neighbours.
+  double sum = 0;
+  int n = 0;
+  for (const PathPoint* p : points) {
+    const double z = p->position.z();
+    if (std::abs(z - (best_bin + 0.5) * 0.1) <= 0.15) {
+      sum += z;
+      ++n;
+    }
+  }
+  return options.camera_height_m + sum / n;
+}
+
+PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& frames,
+                                 const std::vector<const PathPoint*>& points, const PlanRaster& plan,
+                                 const CoarseRaster& coarse, const SegmentGrid& grid,
+                                 const std::vector<double>& plan_dirs, const RegistrationOptions& options,
+                                 Progress& progress) {
+  PieceRegistration out;
+  out.piece = piece;
+  out.ceiling_m = estimate_ceiling(points, options);
+  const double z_min = -options.camera_height_m + options.floor_margin_m;
+  const double z_max = out.ceiling_m - options.camera_height_m - options.ceiling_margin_m;
+  std::vector<Eigen::Vector2d> wall;
+  for (const PathPoint* p : points)
+    if (p->observations >= options.min_observations && p->position.z() > z_min && p->position.z() < z_max)
+      wall.push_back(p->position.head<2>());
+  out.wall_points = static_cast<int>(wall.size());
+  if (out.wall_points < options.min_wall_points) {
+    out.message = "too few wall points to register: " + std::to_string(out.wall_points) + " (of " +
+                  std::to_string(points.size()) + " points; at least " +
+                  std::to_string(options.min_wall_points) + " needed between " + std::to_string(z_min) +
+                  " and " + std::to_string(z_max) + " m from the camera)";
+    return out;
+  }
+  // The global search needs no more than ~20 000 points; the refinement and the score see them all.
+  std::vector<Eigen::Vector2d> sampled;
+  const std::size_t step = std::max<std::size_t>(1, wall.size() / 20000);
+  for (std::size_t i = 0; i < wall.size(); i += step) sampled.push_back(wall[i]);
+  std::vector<Eigen::Vector2d> sampled_frames;
+  const std::size_t frame_step = std::max<std::size_t>(1, frames.size() / 500);
+  for (std::size_t i = 0; i < frames.size(); i += frame_step) sampled_frames.push_back(frames[i]);
+
+  SubProgress search_progress(progress, 0.0, 0.7, "search");
+  const std::vector<Placement> starts =
+      global_search(sampled, sampled_frames, coarse, plan_dirs, options, search_progress);
+
+  // Suppression after refinement on where the points' mean lands.
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& q : wall) mean += q;
+  mean /= static_cast<double>(wall.size());
+  std::vector<Placement> refined;
+  std::vector<RegistrationCandidate> scored;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    progress.checkpoint(0.7 + 0.3 * double(i) / starts.size(), "refinement");
+    const Similarity2 t = refine_icp(wall, plan, starts[i].transform, 3.0 * coarse.cell, options);
+    RegistrationCandidate c = score_placement(wall, frames, plan, grid, t, options);
+    Placement p;
+    p.transform = t;
+    p.score = c.score;
+    p.centre = t.apply(mean);
+    refined.push_back(p);
+    scored.push_back(c);
+  }
+  // Distinct placements, best first; each keeps its full score.
+  std::vector<Placement> distinct = distinct_placements(refined, options, options.max_candidates);
+  for (const Placement& p : distinct)
+    for (std::size_t i = 0; i < refined.size(); ++i)
+      if (refined[i].transform.rotation == p.transform.rotation &&
+          refined[i].transform.translation == p.transform.translation) {
+        out.candidates.push_back(scored[i]);
+        break;
+      }
+  progress.report(1.0, "refinement");
+  if (out.candidates.empty()) {
+    out.message = "no placement fits: the search found no candidate";
+    return out;
+  }
+  const RegistrationCandidate& best = out.candidates.front();
+  out.ok = best.score >= options.min_score;
+  if (!out.ok) {
+    std::ostringstream m;
+    m << "no placement fits: best candidate has " << percent(best.wall_share)
+      << " % of wall points on walls and " << percent(best.free_share) << " % of frames in free space (score "
+      << std::lround(100 * best.score) << " %, at least " << std::lround(100 * options.min_score)
+      << " % needed)";
+    out.message = m.str();
+  }
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+RegistrationResult register_on_plan(const CameraPath& path, const std::vector<PathPoint>& points,
+                                    const FloorPlan& plan, const RegistrationOptions& options,
+                                    Progress& progress) {
+  options.check();
+  const auto t0 = std::chrono::steady_clock::now();
+  if (path.empty()) throw Error("registration: the path has no frames");
+  const int piece_count = path.piece_count();
+  for (const PathPoint& p : points)
+    if (p.piece < 0 || p.piece >= piece_count)
+      throw Error("registration: a point names piece " + std::to_string(p.piece) + " but the path has " +
+                  std::to_string(piece_count) + " piece(s)");
+  progress.checkpoint(0.0, "rasters");
+  const PlanRaster raster = build_plan_raster(plan, options.cell_m, 2.0);
+  const CoarseRaster coarse = coarsen(raster, options.coarse_cell_m, 400);
+  const SegmentGrid grid(raster.walls);
+  const std::vector<double> dirs = plan_directions(raster.walls);
+  progress.checkpoint(0.05, "rasters");
+
+  std::vector<std::vector<const PathPoint*>> by_piece(static_cast<std::size_t>(piece_count));
+  for (const PathPoint& p : points) by_piece[static_cast<std::size_t>(p.piece)].push_back(&p);
+  std::vector<std::vector<Eigen::Vector2d>> frames(static_cast<std::size_t>(piece_count));
+  for (const PathFrame& f : path.frames)
+    if (f.piece >= 0 && f.piece < piece_count)
+      frames[static_cast<std::size_t>(f.piece)].push_back(f.position());
+
+  RegistrationResult result;
+  for (int k = 0; k < piece_count; ++k) {
+    const double begin = 0.05 + 0.95 * k / piece_count, end = 0.05 + 0.95 * (k + 1) / piece_count;
+    SubProgress sub(progress, begin, end,
+                    piece_count == 1 ? std::string() : "piece " + std::to_string(k + 1));
+    if (!path.pieces.empty() && path.pieces[static_cast<std::size_t>(k)].scale_source == "relative") {
+      PieceRegistration r;
+      r.piece = k;
+      r.message = "piece " + std::to_string(k + 1) +
+                  " has no metric scale (no camera height or known distance): registration needs one";
+      result.pieces.push_back(std::move(r));
+      continue;
+    }
+    result.pieces.push_back(register_piece(k, frames[static_cast<std::size_t>(k)],
+                                           by_piece[static_cast<std::size_t>(k)], raster, coarse, grid, dirs,
+                                           options, sub));
+  }
+  progress.report(1.0);
+  result.seconds = seconds_since(t0);
+  return result;
+}
+
+CameraPath apply_registration(const CameraPath& path, const RegistrationResult& result,
+                              const std::vector<int>& choice, std::vector<PathPoint>* points) {
+  CameraPath out = path;
+  for (const PieceRegistration& r : result.pieces) {
+    int pick = r.ok ? 0 : -1;
+    if (r.piece < static_cast<int>(choice.size())) pick = choice[static_cast<std::size_t>(r.piece)];
+    if (pick < 0) continue;
+    if (pick >= static_cast<int>(r.candidates.size()))
+      throw Error("registration: piece " + std::to_string(r.piece + 1) + " has no candidate " +
+                  std::to_string(pick + 1) + " (it has " + std::to_string(r.candidates.size()) + ")");
+    const Similarity2& t = r.candidates[static_cast<std::size_t>(pick)].transform;
+    for (PathFrame& f : out.frames) {
+      if (f.piece != r.piece) continue;
+      const Eigen::Vector2d p = t.apply(f.position());
+      f.x = p.x();
+      f.y = p.y();
+      f.heading = wrap_angle(f.heading + t.rotation);
+    }
+    if (!out.pieces.empty() && r.piece < static_cast<int>(out.pieces.size()))
+      out.pieces[static_cast<std::size_t>(r.piece)].placed = true;
+    if (points) transform_piece_points(points, r.piece, t.rotation, t.scale, t.translation);
+  }
+  return out;
+}
+
+int candidate_for_anchors(const CameraPath& path, const PieceRegistration& piece, const Anchors& anchors) {
+  int best = -1;
+  double best_error = std::numeric_limits<double>::max();
+  for (std::size_t c = 0; c < piece.candidates.size(); ++c) {
+    const Similarity2& t = piece.candidates[c].transform;
+    double error = 0;
+    int n = 0;
+    for (const Anchor& a : anchors) {
+      const PathFrame* f = path.find_frame(a.frame);
+      if (!f || f->piece != piece.piece) continue;
+      error += (t.apply(f->position()) - a.position).squaredNorm();
+      if (a.heading) error += std::pow(wrap_angle(f->heading + t.rotation - *a.heading), 2);  // 1 rad ~ 1 m
+      ++n;
+    }
+    if (n == 0) return -1;
+    if (error < best_error) {
+      best_error = error;
+      best = static_cast<int>(c);
+    }
+  }
+  return best;
+}
+
+std::string describe(const PieceRegistration& piece) {
+  std::ostringstream o;
+  o << "piece " << piece.piece + 1 << ": ";
+  if (!piece.ok) return o.str() + piece.message;
+  const RegistrationCandidate& c = piece.candidates.front();
+  o.setf(std::ios::fixed);
+  o.precision(3);
+  o << "rotation " << degrees(c.transform.rotation) << " deg, translation (" << c.transform.translation.x()
+    << ", " << c.transform.translation.y() << ") m, scale " << c.transform.scale;
+  o.precision(0);
+  o << ", " << 100 * c.wall_share << " % of " << piece.wall_points << " wall points on walls, "
+    << 100 * c.free_share << " % of frames in free space";
+  if (piece.candidates.size() > 1) {
+    o.precision(2);
+    o << "; next candidate scores " << piece.candidates[1].score / std::max(1e-12, c.score) << " of it";
+  }
+  return o.str();
+}
+
+}  // namespace plenopath

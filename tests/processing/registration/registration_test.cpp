@@ -1,0 +1,309 @@
+// Registration on the plan from synthetic points (fast): wall points sampled on the plan's own walls with
+// noise, plus floor, ceiling, furniture and stray points, all moved into a path frame by a known similarity;
+// the registration must find that similarity again with no initial guess.
+#include "processing/registration/registration.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "model/error.h"
+
+namespace plenopath {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+void wall(FloorPlan* plan, Eigen::Vector2d a, Eigen::Vector2d b) {
+  plan->segments.push_back({a, b, "WALLS", true});
+}
+
+// An L-shaped building: three rooms off a corridor, doorways, one pillar. No symmetry.
+FloorPlan l_building() {
+  FloorPlan plan;
+  plan.layers = {{"WALLS", 7, true, true, 0}};
+  wall(&plan, {0, 0}, {14, 0});
+  wall(&plan, {14, 0}, {14, 5});
+  wall(&plan, {14, 5}, {6, 5});
+  wall(&plan, {6, 5}, {6, 12});
+  wall(&plan, {6, 12}, {0, 12});
+  wall(&plan, {0, 12}, {0, 0});
+  // Corridor y in [0, 2] along the bottom; rooms above it with doorways.
+  wall(&plan, {0, 2}, {1.0, 2});
+  wall(&plan, {1.9, 2}, {9, 2});
+  wall(&plan, {9.9, 2}, {14, 2});
+  wall(&plan, {3.5, 2}, {3.5, 12});  // left rooms split
+  wall(&plan, {0, 7}, {3.5, 7});
+  wall(&plan, {10, 2}, {10, 5});
+  // Pillar in the corridor.
+  wall(&plan, {7.0, 0.8}, {7.3, 0.8});
+  wall(&plan, {7.3, 0.8}, {7.3, 1.1});
+  wall(&plan, {7.3, 1.1}, {7.0, 1.1});
+  wall(&plan, {7.0, 1.1}, {7.0, 0.8});
+  return plan;
+}
+
+// A 10 x 6 m room with a short wall in the middle of each long side: the same after a half turn.
+FloorPlan symmetric_room() {
+  FloorPlan plan;
+  plan.layers = {{"WALLS", 7, true, true, 0}};
+  wall(&plan, {0, 0}, {10, 0});
+  wall(&plan, {10, 0}, {10, 6});
+  wall(&plan, {10, 6}, {0, 6});
+  wall(&plan, {0, 6}, {0, 0});
+  wall(&plan, {3, 0}, {3, 2});
+  wall(&plan, {7, 6}, {7, 4});
+  return plan;
+}
+
+struct SyntheticPiece {
+  CameraPath path;  // in its own frame
+  std::vector<PathPoint> points;
+};
+
+// Points on the walls of `plan` within `range` of the walk (as a camera would see them), plus floor,
+// ceiling and stray points; all in the frame that `truth` maps onto the plan.
+SyntheticPiece synthesise(const FloorPlan& plan, const std::vector<Eigen::Vector2d>& walk,
+                          const Similarity2& truth, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double c = std::cos(-truth.rotation), s = std::sin(-truth.rotation);
+  auto to_piece = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d d = (p - truth.translation) / truth.scale;
+    return Eigen::Vector2d(c * d.x() - s * d.y(), s * d.x() + c * d.y());
+  };
+  SyntheticPiece out;
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    PathFrame f;
+    f.index = static_cast<int>(i);
+    const Eigen::Vector2d p = to_piece(walk[i]);
+    f.x = p.x();
+    f.y = p.y();
+    out.path.frames.push_back(f);
+  }
+  auto add = [&](const Eigen::Vector2d& plan_xy, double z) {
+    PathPoint p;
+    const Eigen::Vector2d q = to_piece(plan_xy);
+    p.position = {q.x(), q.y(), z / truth.scale};
+    p.observations = 3 + static_cast<int>(rng() % 8);
+    out.points.push_back(p);
+  };
+  for (const PlanSegment& seg : plan.segments)
+    for (double t = 0; t < seg.length(); t += 0.05) {
+      const Eigen::Vector2d p = seg.a + (seg.b - seg.a) * (t / seg.length());
+      double nearest = 1e9;
+      for (const Eigen::Vector2d& w : walk) nearest = std::min(nearest, (w - p).norm());
+      if (nearest > 6.0 || unit(rng) < 0.3) continue;
+      const Eigen::Vector2d n = Eigen::Vector2d(noise(rng), noise(rng));
+      add(p + n, -1.6 + 0.35 + 2.1 * unit(rng) * 0.9);  // between the floor and the ceiling bands
+    }
+  const std::size_t wall_count = out.points.size();
+  const PlanExtents e = plan.extents();
+  for (std::size_t i = 0; i < wall_count / 3; ++i) {  // floor and ceiling points anywhere near the walk
+    const Eigen::Vector2d& w = walk[rng() % walk.size()];
+    const Eigen::Vector2d p = w + Eigen::Vector2d(4 * unit(rng) - 2, 4 * unit(rng) - 2);
+    add(p, unit(rng) < 0.5 ? -1.6 : 1.2);
+  }
+  for (std::size_t i = 0; i < wall_count / 10; ++i)  // strays: furniture, people, bad triangulations
+    add(e.min + Eigen::Vector2d(unit(rng) * e.size().x(), unit(rng) * e.size().y()), -0.8 + unit(rng));
+  return out;
+}
+
+std::vector<Eigen::Vector2d> corridor_walk() {
+  std::vector<Eigen::Vector2d> walk;
+  for (double x = 0.8; x < 13.2; x += 0.1) walk.push_back({x, 1.0 + 0.3 * std::sin(x)});
+  for (double y = 2.3; y < 6.5; y += 0.1) walk.push_back({1.45, y});  // into the lower-left room
+  return walk;
+}
+
+double position_error(const Similarity2& found, const Similarity2& truth, const CameraPath& path) {
+  double sum = 0;
+  for (const PathFrame& f : path.frames)
+    sum += (found.apply(f.position()) - truth.apply(f.position())).squaredNorm();
+  return std::sqrt(sum / path.size());
+}
+
+TEST(Registration, RecoversAKnownSimilarityFromNoisyWallPoints) {
+  const FloorPlan plan = l_building();
+  Similarity2 truth;
+  truth.rotation = 127.3 * kDeg;
+  truth.scale = 1.012;  // the tracker's metres 1.2 % short
+  truth.translation = {4.2, -7.9};
+  const SyntheticPiece piece = synthesise(plan, corridor_walk(), truth, 5);
+  RegistrationOptions options;
+  const RegistrationResult r = register_on_plan(piece.path, piece.points, plan, options);
+  ASSERT_EQ(r.pieces.size(), 1u);
+  const PieceRegistration& p = r.pieces[0];
+  ASSERT_TRUE(p.ok) << p.message;
+  ASSERT_FALSE(p.candidates.empty());
+  const RegistrationCandidate& best = p.candidates[0];
+  std::printf("%s\n", describe(p).c_str());
+  EXPECT_NEAR(std::remainder(best.transform.rotation - truth.rotation, 2 * M_PI), 0.0, 0.05 * kDeg);
+  EXPECT_NEAR(best.transform.scale, truth.scale, 0.002);
+  EXPECT_LT(position_error(best.transform, truth, piece.path), 0.01);
+  EXPECT_GT(best.wall_share, 0.5);
+  EXPECT_DOUBLE_EQ(best.free_share, 1.0);
+  // The walk places no frame off free space, so the candidates after it are clearly worse.
+  if (p.candidates.size() > 1) {
+    EXPECT_GT(p.ambiguity_ratio(), 1.3);
+  }
+
+  // Applied: every frame lands where the truth puts it, headings turned by the rotation.
+  const CameraPath placed = apply_registration(piece.path, r);
+  for (std::size_t i = 0; i < placed.size(); i += 17) {
+    const Eigen::Vector2d want = truth.apply(piece.path.frames[i].position());
+    EXPECT_LT((placed.frames[i].position() - want).norm(), 0.02) << i;
+    EXPECT_NEAR(std::remainder(placed.frames[i].heading - truth.rotation, 2 * M_PI), 0.0, 0.1 * kDeg);
+  }
+}
+
+TEST(Registration, ASymmetricRoomGivesTwoNearEqualCandidatesAndOneAnchorPicks) {
+  const FloorPlan plan = symmetric_room();
+  std::vector<Eigen::Vector2d> walk;
+  for (double x = 1.0; x < 9.0; x += 0.1) walk.push_back({x, 3.0 + 0.8 * std::sin(x * 0.9)});
+  Similarity2 truth;
+  truth.rotation = -33 * kDeg;
+  truth.translation = {-2.0, 5.0};
+  const SyntheticPiece piece = synthesise(plan, walk, truth, 9);
+  const RegistrationResult r = register_on_plan(piece.path, piece.points, plan);
+  ASSERT_EQ(r.pieces.size(), 1u);
+  const PieceRegistration& p = r.pieces[0];
+  ASSERT_TRUE(p.ok) << p.message;
+  ASSERT_GE(p.candidates.size(), 2u);
+  std::printf("%s\n", describe(p).c_str());
+  EXPECT_LT(p.ambiguity_ratio(), 1.1) << "the half turn fits as well";
+  // The two: the truth and the truth turned by 180 deg about the room's centre.
+  Similarity2 turned = truth;
+  turned.rotation = truth.rotation + M_PI;
+  turned.translation = Eigen::Vector2d(10, 6) - truth.translation;
+  int matched_truth = -1, matched_turned = -1;
+  for (int c = 0; c < 2; ++c) {
+    const Similarity2& t = p.candidates[static_cast<std::size_t>(c)].transform;
+    if (position_error(t, truth, piece.path) < 0.03) matched_truth = c;
+    if (position_error(t, turned, piece.path) < 0.03) matched_turned = c;
+  }
+  ASSERT_GE(matched_truth, 0);
+  ASSERT_GE(matched_turned, 0);
+  // One anchor (frame 10 at its true place) decides.
+  Anchors anchors = {{10, truth.apply(piece.path.frames[10].position()), std::nullopt}};
+  EXPECT_EQ(candidate_for_anchors(piece.path, p, anchors), matched_truth);
+  anchors[0].position = turned.apply(piece.path.frames[10].position());
+  EXPECT_EQ(candidate_for_anchors(piece.path, p, anchors), matched_turned);
+}
+
+TEST(Registration, APlanWithoutSightBlockingSegmentsIsAClearError) {
+  FloorPlan plan = l_building();
+  plan.source_file = "/tmp/empty_walls.dxf";
+  for (PlanSegment& s : plan.segments) s.occluder = false;
+  const SyntheticPiece piece = synthesise(l_building(), corridor_walk(), Similarity2{}, 1);
+  try {
+    register_on_plan(piece.path, piece.points, plan);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/tmp/empty_walls.dxf"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no sight-blocking segments"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Registration, PointsFromAnotherBuildingFitNowhere) {
+  // Points of the L building's walk registered on a plan of a round hall (no straight wall longer than
+  // 2.4 m): the best candidate is reported with its figures and the piece is not placed.
+  FloorPlan hall;
+  hall.layers = {{"WALLS", 7, true, true, 0}};
+  const int sides = 24;
+  for (int i = 0; i < sides; ++i) {
+    const double a0 = 2 * M_PI * i / sides, a1 = 2 * M_PI * (i + 1) / sides;
+    wall(&hall, {9 * std::cos(a0), 9 * std::sin(a0)}, {9 * std::cos(a1), 9 * std::sin(a1)});
+  }
+  const SyntheticPiece piece = synthesise(l_building(), corridor_walk(), Similarity2{}, 2);
+  const RegistrationResult r = register_on_plan(piece.path, piece.points, hall);
+  ASSERT_EQ(r.pieces.size(), 1u);
+  EXPECT_FALSE(r.pieces[0].ok);
+  EXPECT_FALSE(r.all_ok());
+  EXPECT_EQ(r.pieces[0].message.rfind("no placement fits: best candidate has ", 0), 0u)
+      << r.pieces[0].message;
+  EXPECT_NE(r.pieces[0].message.find("% of wall points on walls"), std::string::npos);
+  // Nothing applied to a piece that did not fit.
+  const CameraPath same = apply_registration(piece.path, r);
+  EXPECT_EQ(same, piece.path);
+}
+
+TEST(Registration, TwoPiecesAreRegisteredEachOnItsOwn) {
+  const FloorPlan plan = l_building();
+  std::vector<Eigen::Vector2d> first, second;
+  for (double x = 0.8; x < 6.5; x += 0.1) first.push_back({x, 1.0});
+  for (double y = 7.5; y < 11.5; y += 0.1) second.push_back({1.7 + 0.2 * std::sin(y), y});  // upper-left room
+  Similarity2 t0, t1;
+  t0.rotation = 0.0;  // piece 0 as the tracker leaves it: first frame at the origin
+  t0.translation = {0.8, 1.0};
+  t1.rotation = 71 * kDeg;
+  t1.translation = {1.9, 7.5};
+  const SyntheticPiece a = synthesise(plan, first, t0, 3), b = synthesise(plan, second, t1, 4);
+  CameraPath path = a.path;
+  path.pieces = {
+      PathPiece{0, static_cast<int>(a.path.size()) - 1, true, "camera_height", 1.0, ""},
+      PathPiece{static_cast<int>(a.path.size()), static_cast<int>(a.path.size() + b.path.size()) - 1, false,
+                "camera_height", 1.0, "no tracks"}};
+  std::vector<PathPoint> points = a.points;
+  for (PathFrame f : b.path.frames) {
+    f.index += static_cast<int>(a.path.size());
+    f.piece = 1;
+    path.frames.push_back(f);
+  }
+  for (PathPoint p : b.points) {
+    p.piece = 1;
+    points.push_back(p);
+  }
+  const RegistrationResult r = register_on_plan(path, points, plan);
+  ASSERT_EQ(r.pieces.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const PieceRegistration& p = r.pieces[static_cast<std::size_t>(k)];
+    ASSERT_TRUE(p.ok) << k << ": " << p.message;
+    std::printf("%s\n", describe(p).c_str());
+    const Similarity2& want = k == 0 ? t0 : t1;
+    const CameraPath own = path.piece_path(k);
+    EXPECT_LT(position_error(p.candidates[0].transform, want, own), 0.02) << k;
+    EXPECT_NEAR(std::remainder(p.candidates[0].transform.rotation - want.rotation, 2 * M_PI), 0.0,
+                0.1 * kDeg);
+  }
+  std::vector<PathPoint> moved = points;
+  const CameraPath placed = apply_registration(path, r, {}, &moved);
+  EXPECT_TRUE(placed.pieces[1].placed);
+  // A wall point of piece 1, moved with it, lies on a wall of the plan again (within the noise).
+  const PathPoint& q = moved[a.points.size()];
+  EXPECT_EQ(q.piece, 1);
+  double nearest = 1e9;
+  for (const PlanSegment& s : plan.segments) {
+    const Eigen::Vector2d ab = s.b - s.a;
+    const double t = std::clamp((q.position.head<2>() - s.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (q.position.head<2>() - (s.a + t * ab)).norm());
+  }
+  EXPECT_LT(nearest, 0.1);
+}
+
+TEST(Registration, OptionsAreChecked) {
+  RegistrationOptions o;
+  o.cell_m = 0;
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.coarse_cell_m = 0.01;
+  try {
+    o.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("RegistrationOptions.coarse_cell_m"), std::string::npos);
+  }
+}
+
+TEST(Registration, ACancelEndsWithCancelled) {
+  struct CancelAtOnce : CancellableProgress {
+    void report(double, const std::string&) override { cancel(); }
+  } progress;
+  const SyntheticPiece piece = synthesise(l_building(), corridor_walk(), Similarity2{}, 1);
+  EXPECT_THROW(register_on_plan(piece.path, piece.points, l_building(), {}, progress), Cancelled);
+}
+
+}  // namespace
+}  // namespace plenopath
