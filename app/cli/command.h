@@ -28,6 +28,7 @@ Command add_info_command(CLI::App& parent);
 Command add_make_sample_command(CLI::App& parent);
 Command add_plan_info_command(CLI::App& parent);
 Command add_refine_command(CLI::App& parent);
+Command add_register_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
 Command add_sample_command(CLI::App& parent);
 Command add_stitch_command(CLI::App& parent);

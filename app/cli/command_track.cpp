@@ -1,7 +1,10 @@
 // `plenopath track --capture DIR|VIDEO [--first N] [--last M] [--stride K] [--camera-height M]
-// [--anchors ANCHORS.json] [--out PATH.json] [--json]`: the camera path from the panoramas alone
-// (processing/egomotion/egomotion.h); with --anchors, then aligned to the anchors and refined with them as
-// priors (processing/anchors/anchor_refinement.h), which puts it on the plan.
+// [--plan PLAN.dxf [--layers L ...] [--occluders L ...]] [--anchors ANCHORS.json] [--out PATH.json]
+// [--json]`: the camera path from the panoramas alone (processing/egomotion/egomotion.h); with --plan, each
+// piece then placed on the plan by the tracker's points (processing/registration/registration.h); with
+// --anchors, aligned to the anchors and refined with them as priors (processing/anchors/anchor_refinement.h).
+// With --out, the tracker's points go beside the path file (PATH.points.json, model/path_points.h), in the
+// path's frame, for `plenopath register` later.
 // Progress goes to stderr. Frame indices (path file, --known-distance, --first/--last) are positions in the
 // whole capture: the natural order of the folder's image files, or the video's frame numbers.
 #include <algorithm>
@@ -17,12 +20,16 @@
 
 #include "app/cli/command.h"
 #include "app/cli/console_progress.h"
+#include "app/cli/registration_common.h"
 #include "model/anchors_io.h"
 #include "model/error.h"
 #include "model/path_io.h"
+#include "model/path_points.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
 #include "processing/egomotion/egomotion.h"
+#include "processing/plan/dxf_import.h"
+#include "processing/registration/registration.h"
 
 namespace plenopath::cli {
 namespace {
@@ -83,6 +90,8 @@ Command add_track_command(CLI::App& parent) {
     double tilt_prior = RefinementOptions{}.tilt_prior_deg;
     bool no_static_mask = false;
     std::string mask_out;  // the mask used, written as an image
+    std::string plan;      // DXF plan: the path is registered on it after tracking
+    DxfImportOptions import;
   };
   auto options = std::make_shared<Options>();
   CLI::App* sub =
@@ -107,7 +116,14 @@ Command add_track_command(CLI::App& parent) {
       "--anchors", options->anchors,
       "Anchors file [{\"index\", \"x\", \"y\", \"heading_deg\"?}, ...] (plan metres): after tracking, "
       "align the path to them and refine it with them as priors (corrects drift, puts it on the plan)");
-  sub->add_option("--out", options->out, "Write the path file here (JSON, see ARCHITECTURE.md)");
+  sub->add_option("--plan", options->plan,
+                  "Floor plan (DXF): after tracking, place each piece of the path on it by the tracker's "
+                  "points on its walls (needs --camera-height)");
+  sub->add_option("--layers", options->import.layers, "With --plan: import only these layers (default: all)");
+  sub->add_option("--occluders", options->import.occluder_layers,
+                  "With --plan: the layers whose lines block sight (default: guessed from the names)");
+  sub->add_option("--out", options->out,
+                  "Write the path file here (JSON, see ARCHITECTURE.md), and the points beside it");
   sub->add_option("--work-width", options->work_width,
                   "Tracking resolution (frames are resized to this width)")
       ->check(CLI::Range(64, 16384));
@@ -153,6 +169,18 @@ Command add_track_command(CLI::App& parent) {
               throw Error(options->anchors + ": anchor on frame " + std::to_string(a.frame) +
                           ", which is not among the tracked frames (see --first, --last, --stride)");
         }
+        // The plan is read before the long tracking run too.
+        FloorPlan plan;
+        if (!options->plan.empty()) {
+          if (!(options->camera_height > 0))
+            throw Error(
+                "--plan needs --camera-height: registration tells wall points from floor points by it");
+          plan = import_dxf(options->plan, options->import);
+          if (plan.occluder_segments().empty())
+            throw Error(options->plan +
+                        ": registration needs walls, but the plan has no sight-blocking "
+                        "segments (name the walls' layers with --occluders)");
+        }
         EgomotionOptions eo;
         eo.camera_height_m = options->camera_height;
         eo.klt.work_width = options->work_width;
@@ -192,6 +220,19 @@ Command add_track_command(CLI::App& parent) {
         renumber_frames(&r.path, positions);
         if (source->kind() == CaptureKind::kImageFolder)
           for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
+        nlohmann::json registration;
+        if (!options->plan.empty()) {
+          RegistrationOptions ro;
+          ro.camera_height_m = options->camera_height;
+          ConsoleProgress register_progress("track: registration", options->quiet);
+          const RegistrationResult reg =
+              register_on_plan(r.path, r.tracked_points, plan, ro, register_progress);
+          register_progress.finish();
+          registration = registration_to_json(reg);
+          if (!options->quiet) print_registration(std::cerr, reg);
+          require_registered(reg, options->plan);
+          r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
+        }
         AnchorRefinementReport anchor_report;
         if (!anchors.empty()) {
           if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
@@ -207,7 +248,10 @@ Command add_track_command(CLI::App& parent) {
           worst_residual = std::max(worst_residual, a.distance_m);
           residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
         }
-        if (!options->out.empty()) write_path_file(r.path, options->out);
+        if (!options->out.empty()) {
+          write_path_file(r.path, options->out);
+          write_path_points_file(r.tracked_points, points_file_beside(options->out));
+        }
         if (!options->mask_out.empty()) {
           const cv::Mat used = r.mask.empty() ? cv::Mat(1, 2, CV_8U, cv::Scalar(255)) : r.mask;
           if (!cv::imwrite(options->mask_out, used))
@@ -229,26 +273,27 @@ Command add_track_command(CLI::App& parent) {
           }
           pieces.push_back(std::move(j));
         }
-        const nlohmann::json summary = {{"capture", options->capture},
-                                        {"pieces", pieces},
-                                        {"joins", r.joins},
-                                        {"frames", r.path.size()},
-                                        {"first_index", positions.empty() ? 0 : positions.front()},
-                                        {"last_index", positions.empty() ? 0 : positions.back()},
-                                        {"stride", options->stride},
-                                        {"keyframes", r.keyframes.size()},
-                                        {"points", r.points},
-                                        {"length", r.path.length()},
-                                        {"scale_source", r.scale_source},
-                                        {"flagged_frames", r.flagged_frames},
-                                        {"masked_pct", 100.0 * r.static_mask_fraction},
-                                        {"loop_closures", r.loop_closures},
-                                        {"loop_frames", r.loop_frames},
-                                        {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
-                                        {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
-                                        {"anchors", anchors.size()},
-                                        {"anchor_residuals", residuals},
-                                        {"out", options->out}};
+        nlohmann::json summary = {{"capture", options->capture},
+                                  {"pieces", pieces},
+                                  {"joins", r.joins},
+                                  {"frames", r.path.size()},
+                                  {"first_index", positions.empty() ? 0 : positions.front()},
+                                  {"last_index", positions.empty() ? 0 : positions.back()},
+                                  {"stride", options->stride},
+                                  {"keyframes", r.keyframes.size()},
+                                  {"points", r.points},
+                                  {"length", r.path.length()},
+                                  {"scale_source", r.scale_source},
+                                  {"flagged_frames", r.flagged_frames},
+                                  {"masked_pct", 100.0 * r.static_mask_fraction},
+                                  {"loop_closures", r.loop_closures},
+                                  {"loop_frames", r.loop_frames},
+                                  {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
+                                  {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
+                                  {"anchors", anchors.size()},
+                                  {"anchor_residuals", residuals},
+                                  {"out", options->out}};
+        if (!registration.is_null()) summary["registration"] = registration;
         if (options->json) {
           std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         } else {
@@ -259,7 +304,10 @@ Command add_track_command(CLI::App& parent) {
                     << r.loop_closures << " loop closures\n";
           if (r.path.piece_count() > 1) {
             std::cout << "The images do not connect everywhere: the path is in " << r.path.piece_count()
-                      << " pieces, each with its own scale; place each on the plan with its own anchors\n";
+                      << " pieces, each with its own scale"
+                      << (options->plan.empty() ? "; place each on the plan with its own anchors or --plan"
+                                                : "")
+                      << "\n";
             for (int k = 0; k < r.path.piece_count(); ++k) {
               const PathPiece& p = r.path.pieces[k];
               std::cout << "  piece " << k << ": frames " << p.first_index << "-" << p.last_index
@@ -271,6 +319,8 @@ Command add_track_command(CLI::App& parent) {
             std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
                       << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "
                       << anchor_report.iterations << " iterations\n";
+          if (!options->plan.empty())
+            std::cout << "Placed on " << options->plan << " by " << r.tracked_points.size() << " points\n";
           if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
         }
         return kExitOk;
