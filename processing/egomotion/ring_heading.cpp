@@ -145,6 +145,21 @@ void RingOptions::check() const {
   require_option(min_peak >= 0.0 && min_peak < 1.0, s + "min_peak", "must be in [0, 1)", min_peak);
 }
 
+namespace {
+// Per image row, the solid angle it subtends inside the latitude band (the exact angle between its edges,
+// weighted by cos(elevation): sin(top) - sin(bottom)); 0 for rows outside the band.
+std::vector<double> band_row_weights(int height, const RingOptions& options) {
+  std::vector<double> weights(height, 0.0);
+  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
+  for (int v = 0; v < height; ++v) {
+    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / height * kPi);
+    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / height * kPi);
+    if (top > bottom) weights[v] = std::sin(top) - std::sin(bottom);
+  }
+  return weights;
+}
+}  // namespace
+
 std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& options,
                                     const cv::Mat& mask) {
   if (mask.empty()) return make_ring_image(equirect, options);
@@ -153,13 +168,11 @@ std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& 
   if (mask.type() != CV_8U || mask.size() != gray32.size())
     throw Error("ring image: the mask must be 8-bit and the frame's size");
   const int w = gray32.cols, h = gray32.rows;
+  const std::vector<double> row_weight = band_row_weights(h, options);
   std::vector<double> ring(w, 0.0), total(w, 0.0);
-  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
   for (int v = 0; v < h; ++v) {
-    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
-    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
-    if (top <= bottom) continue;
-    const double weight = std::sin(top) - std::sin(bottom);
+    const double weight = row_weight[v];
+    if (weight <= 0.0) continue;
     const float* row = gray32.ptr<float>(v);
     const uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < w; ++u)
@@ -182,14 +195,12 @@ std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& 
 std::vector<double> ring_column_weights(const cv::Mat& mask, const RingOptions& options) {
   if (mask.empty() || mask.type() != CV_8U) throw Error("ring column weights: the mask must be 8-bit");
   const int w = mask.cols, h = mask.rows;
+  const std::vector<double> row_weight = band_row_weights(h, options);
   std::vector<double> usable(w, 0.0);
   double full = 0.0;
-  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
   for (int v = 0; v < h; ++v) {
-    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
-    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
-    if (top <= bottom) continue;
-    const double weight = std::sin(top) - std::sin(bottom);
+    const double weight = row_weight[v];
+    if (weight <= 0.0) continue;
     full += weight;
     const uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < w; ++u)
@@ -203,15 +214,12 @@ std::vector<double> make_ring_image(const cv::Mat& equirect, const RingOptions& 
   cv::Mat gray32;
   grey_image(equirect, "ring image").convertTo(gray32, CV_32F);
   const int w = gray32.cols, h = gray32.rows;
+  const std::vector<double> row_weight = band_row_weights(h, options);
   std::vector<double> ring(w, 0.0);
   double total = 0.0;
-  const double lo = options.min_elevation_deg * kPi / 180.0, hi = options.max_elevation_deg * kPi / 180.0;
   for (int v = 0; v < h; ++v) {
-    // Exact angle the row subtends inside the band, weighted by cos(elevation): the row's solid angle.
-    const double top = std::min(hi, kPi / 2 - static_cast<double>(v) / h * kPi);
-    const double bottom = std::max(lo, kPi / 2 - static_cast<double>(v + 1) / h * kPi);
-    if (top <= bottom) continue;
-    const double weight = std::sin(top) - std::sin(bottom);
+    const double weight = row_weight[v];
+    if (weight <= 0.0) continue;
     const float* row = gray32.ptr<float>(v);
     for (int u = 0; u < w; ++u) ring[u] += weight * row[u];
     total += weight;
