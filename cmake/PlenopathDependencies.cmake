@@ -10,6 +10,7 @@ find_package(Threads REQUIRED)
 
 list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
 find_package(GeographicLib REQUIRED)
+find_package(EXPAT REQUIRED)
 
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(DXFLIB REQUIRED IMPORTED_TARGET dxflib)

@@ -1,4 +1,4 @@
-// `plenopath capture-info DIR|VIDEO [--first N] [--last N] [--stride S] [--depth DIR] [--gpx FILE] [--json]`:
+// `plenopath capture-info DIR|VIDEO [--first N] [--last N] [--stride S] [--depth DIR] [--gps FILE] [--json]`:
 // what a capture holds before it is imported: frames, size, rate, skipped frames with reasons, depth and
 // GPS matches. A folder holding rig.json and one folder per head is a multi-head capture.
 #include <iomanip>
@@ -61,7 +61,7 @@ nlohmann::json summarize(const Options& o) {
                         {"matched", source->depth_match_count()},
                         {"unmatched", n - source->depth_match_count()}};
   if (!o.gpx.empty()) {
-    const GpxTrack track = read_gpx(o.gpx);
+    const GpsTrack track = read_gps_track(o.gpx);
     std::vector<double> times(n);
     for (int i = 0; i < n; ++i) times[i] = source->timestamp_s(i);
     GpsMatchOptions match;
@@ -75,7 +75,8 @@ nlohmann::json summarize(const Options& o) {
                       {"duration_s", track.samples.back().time_s},
                       {"time_offset_s", o.gps_offset_s},
                       {"frames_matched", count},
-                      {"frames_unmatched", n - count}};
+                      {"frames_unmatched", n - count},
+                      {"notes", track.notes}};
   }
   return summary;
 }
@@ -115,7 +116,7 @@ Command add_capture_info_command(CLI::App& parent) {
   sub->add_option("--rate", o->rate, "Frames per second of an image folder (default 30)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--depth", o->depth, "Folder of depth maps matched to frames by name");
-  sub->add_option("--gpx", o->gpx, "GPS track (GPX) matched to frames by time");
+  sub->add_option("--gps,--gpx", o->gpx, "GPS track (GPX, NMEA 0183 or GeoJSON) matched to frames by time");
   sub->add_option("--gps-offset", o->gps_offset_s,
                   "Seconds on the GPS clock at the capture's first frame time");
   sub->add_option("--stitch-width", o->stitch_width,

@@ -9,175 +9,16 @@
 #include <sstream>
 
 #include "model/error.h"
+#include "processing/capture/gps_track_internal.h"
 
 namespace plenopath {
 namespace {
-
-// ---- a small, forgiving XML reader: enough for GPX (elements, attributes, text; skips the rest) ----
-
-struct Tag {
-  std::string name;  // local name, namespace prefix dropped
-  std::map<std::string, std::string> attributes;
-  bool closing = false;
-  bool self_closing = false;
-};
-
-std::string local_name(const std::string& qualified) {
-  const std::size_t colon = qualified.rfind(':');
-  return colon == std::string::npos ? qualified : qualified.substr(colon + 1);
-}
-
-std::string decode_entities(const std::string& s) {
-  if (s.find('&') == std::string::npos) return s;
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] != '&') {
-      out += s[i];
-      continue;
-    }
-    const std::size_t semi = s.find(';', i);
-    if (semi == std::string::npos) {
-      out += s[i];
-      continue;
-    }
-    const std::string e = s.substr(i + 1, semi - i - 1);
-    if (e == "amp")
-      out += '&';
-    else if (e == "lt")
-      out += '<';
-    else if (e == "gt")
-      out += '>';
-    else if (e == "quot")
-      out += '"';
-    else if (e == "apos")
-      out += '\'';
-    else if (!e.empty() && e[0] == '#') {
-      long code = 0;
-      try {
-        code = e.size() > 1 && (e[1] == 'x' || e[1] == 'X') ? std::stol(e.substr(2), nullptr, 16)
-                                                            : std::stol(e.substr(1));
-      } catch (...) {
-        code = '?';
-      }
-      out += code > 0 && code < 128 ? static_cast<char>(code) : '?';
-    } else {
-      out += s.substr(i, semi - i + 1);
-    }
-    i = semi;
-  }
-  return out;
-}
 
 std::string trim(const std::string& s) {
   std::size_t b = 0, e = s.size();
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   return s.substr(b, e - b);
-}
-
-class XmlScanner {
- public:
-  XmlScanner(const std::string& text, const std::string& file) : text_(text), file_(file) {}
-
-  // Next tag; text between the previous tag and this one goes to *text. False at the end.
-  bool next(Tag& tag, std::string& text) {
-    text.clear();
-    while (pos_ < text_.size()) {
-      const std::size_t lt = text_.find('<', pos_);
-      if (lt == std::string::npos) {
-        text += text_.substr(pos_);
-        pos_ = text_.size();
-        return false;
-      }
-      text += text_.substr(pos_, lt - pos_);
-      pos_ = lt;
-      if (text_.compare(pos_, 4, "<!--") == 0) {
-        skip_past("-->", "comment");
-      } else if (text_.compare(pos_, 9, "<![CDATA[") == 0) {
-        const std::size_t end = text_.find("]]>", pos_ + 9);
-        if (end == std::string::npos) error("unterminated CDATA section");
-        text += text_.substr(pos_ + 9, end - pos_ - 9);
-        pos_ = end + 3;
-      } else if (text_.compare(pos_, 2, "<?") == 0) {
-        skip_past("?>", "processing instruction");
-      } else if (text_.compare(pos_, 2, "<!") == 0) {
-        skip_past(">", "declaration");
-      } else {
-        parse_tag(tag);
-        return true;
-      }
-    }
-    return false;
-  }
-
-  [[noreturn]] void error(const std::string& what) const {
-    const long line =
-        1 + std::count(text_.begin(), text_.begin() + static_cast<long>(std::min(pos_, text_.size())), '\n');
-    throw file_error(file_, "line " + std::to_string(line) + ": " + what);
-  }
-  std::size_t position() const { return pos_; }
-
- private:
-  void skip_past(const char* end, const char* what) {
-    const std::size_t e = text_.find(end, pos_ + 2);
-    if (e == std::string::npos) error(std::string("unterminated ") + what);
-    pos_ = e + std::char_traits<char>::length(end);
-  }
-
-  void parse_tag(Tag& tag) {
-    tag = Tag{};
-    std::size_t p = pos_ + 1;
-    if (p < text_.size() && text_[p] == '/') tag.closing = true, ++p;
-    const std::size_t name_begin = p;
-    while (p < text_.size() && !std::isspace(static_cast<unsigned char>(text_[p])) && text_[p] != '>' &&
-           text_[p] != '/')
-      ++p;
-    tag.name = local_name(text_.substr(name_begin, p - name_begin));
-    if (tag.name.empty()) error("malformed tag");
-    while (true) {
-      while (p < text_.size() && std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
-      if (p >= text_.size()) error("unterminated tag <" + tag.name + ">");
-      if (text_[p] == '>') {
-        ++p;
-        break;
-      }
-      if (text_[p] == '/' && p + 1 < text_.size() && text_[p + 1] == '>') {
-        tag.self_closing = true;
-        p += 2;
-        break;
-      }
-      const std::size_t an = p;
-      while (p < text_.size() && text_[p] != '=' && text_[p] != '>' &&
-             !std::isspace(static_cast<unsigned char>(text_[p])))
-        ++p;
-      const std::string attribute = local_name(text_.substr(an, p - an));
-      while (p < text_.size() && std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
-      if (p >= text_.size() || text_[p] != '=')
-        error("attribute '" + attribute + "' of <" + tag.name + "> has no value");
-      ++p;
-      while (p < text_.size() && std::isspace(static_cast<unsigned char>(text_[p]))) ++p;
-      if (p >= text_.size() || (text_[p] != '"' && text_[p] != '\''))
-        error("attribute '" + attribute + "' of <" + tag.name + "> is not quoted");
-      const char quote = text_[p++];
-      const std::size_t close = text_.find(quote, p);
-      if (close == std::string::npos) error("unterminated attribute '" + attribute + "'");
-      tag.attributes[attribute] = decode_entities(text_.substr(p, close - p));
-      p = close + 1;
-    }
-    pos_ = p;
-  }
-
-  const std::string& text_;
-  std::string file_;
-  std::size_t pos_ = 0;
-};
-
-double parse_number(const std::string& text, bool* ok) {
-  const std::string t = trim(text);
-  char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
-  *ok = !t.empty() && end == t.c_str() + t.size() && std::isfinite(v);
-  return v;
 }
 
 // Days from 1970-01-01 to a proleptic Gregorian date (the usual era-based formula).
@@ -260,83 +101,19 @@ double parse_iso8601_utc(const std::string& text_in) {
          offset_s;
 }
 
-GpxTrack parse_gpx(const std::string& text, const std::string& file) {
-  XmlScanner scanner(text, file);
-  GpxTrack track;
-  struct Point {
-    double lat = 0, lon = 0, ele = 0, time = 0;
-    bool has_time = false;
-  };
-  std::vector<Point> track_points, route_points;
-  std::vector<std::string> stack;
-  Tag tag;
-  std::string between;
-  bool saw_root = false;
-  Point current;
-  bool in_point = false;
-  std::string point_kind;
-  while (scanner.next(tag, between)) {
-    if (!saw_root) {
-      if (tag.closing || tag.name != "gpx")
-        scanner.error("not a GPX file (the root element is <" + tag.name + ">, expected <gpx>)");
-      saw_root = true;
-    }
-    if (tag.closing) {
-      if (stack.empty() || stack.back() != tag.name)
-        scanner.error("</" + tag.name + "> does not close " +
-                      (stack.empty() ? std::string("anything") : "<" + stack.back() + ">"));
-      const std::string value = trim(decode_entities(between));
-      const std::string parent = stack.size() >= 2 ? stack[stack.size() - 2] : "";
-      if (in_point && parent == point_kind) {
-        bool ok = true;
-        if (tag.name == "ele") {
-          current.ele = parse_number(value, &ok);
-          if (!ok) scanner.error("bad <ele> '" + value + "'");
-        } else if (tag.name == "time") {
-          try {
-            current.time = parse_iso8601_utc(value);
-          } catch (const Error& e) {
-            scanner.error(e.what());
-          }
-          current.has_time = true;
-        }
-      }
-      if (tag.name == "name" && parent == "trk" && track.name.empty()) track.name = value;
-      if (in_point && tag.name == point_kind) {
-        (point_kind == "trkpt" ? track_points : route_points).push_back(current);
-        in_point = false;
-      }
-      stack.pop_back();
-      continue;
-    }
-    if (tag.name == "trkpt" || tag.name == "rtept") {
-      if (in_point) scanner.error("<" + tag.name + "> inside another point");
-      current = Point{};
-      auto lat = tag.attributes.find("lat"), lon = tag.attributes.find("lon");
-      if (lat == tag.attributes.end() || lon == tag.attributes.end())
-        scanner.error("<" + tag.name + "> without lat and lon");
-      bool ok1 = false, ok2 = false;
-      current.lat = parse_number(lat->second, &ok1);
-      current.lon = parse_number(lon->second, &ok2);
-      if (!ok1 || current.lat < -90 || current.lat > 90) scanner.error("bad latitude '" + lat->second + "'");
-      if (!ok2 || current.lon < -180 || current.lon > 360)
-        scanner.error("bad longitude '" + lon->second + "'");
-      if (current.lon > 180) current.lon -= 360;
-      point_kind = tag.name;
-      if (tag.self_closing) {
-        (point_kind == "trkpt" ? track_points : route_points).push_back(current);
-        continue;
-      }
-      in_point = true;
-    }
-    if (!tag.self_closing) stack.push_back(tag.name);
-  }
-  if (!saw_root) throw file_error(file, "not a GPX file (no XML elements)");
-  if (!stack.empty()) throw file_error(file, "ends inside <" + stack.back() + "> (truncated?)");
-  const std::vector<Point>& points = track_points.empty() ? route_points : track_points;
-  if (points.empty()) throw file_error(file, "no track points (<trkpt>) or route points (<rtept>)");
-  std::vector<Point> timed;
-  for (const Point& p : points) {
+double parse_gps_number(const std::string& text, bool* ok) {
+  const std::string t = trim(text);
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  *ok = !t.empty() && end == t.c_str() + t.size() && std::isfinite(v);
+  return v;
+}
+
+GpsTrack gps_track_from_points(std::vector<GpsPoint> points, GpsTrack track, const std::string& file,
+                               const char* point_names) {
+  if (points.empty()) throw file_error(file, std::string("no ") + point_names);
+  std::vector<GpsPoint> timed;
+  for (const GpsPoint& p : points) {
     if (p.has_time)
       timed.push_back(p);
     else
@@ -346,9 +123,9 @@ GpxTrack parse_gpx(const std::string& text, const std::string& file) {
     throw file_error(
         file, "its " + std::to_string(points.size()) + " points have no <time>; frames are matched by time");
   std::stable_sort(timed.begin(), timed.end(),
-                   [](const Point& a, const Point& b) { return a.time < b.time; });
+                   [](const GpsPoint& a, const GpsPoint& b) { return a.time < b.time; });
   track.epoch_unix_s = timed.front().time;
-  for (const Point& p : timed) {
+  for (const GpsPoint& p : timed) {
     GpsSample s;
     s.time_s = p.time - track.epoch_unix_s;
     s.latitude_deg = p.lat;
@@ -356,17 +133,37 @@ GpxTrack parse_gpx(const std::string& text, const std::string& file) {
     s.altitude_m = p.ele;
     track.samples.push_back(s);
   }
+  if (track.samples_without_time > 0)
+    track.notes.push_back(std::to_string(track.samples_without_time) + " points without a time skipped");
   return track;
 }
 
-GpxTrack read_gpx(const std::string& file) {
+std::string read_gps_file(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw file_error(file, "cannot open GPS track");
   std::stringstream buffer;
   buffer << in.rdbuf();
   if (in.bad()) throw file_error(file, "cannot read GPS track");
-  return parse_gpx(buffer.str(), file);
+  return buffer.str();
 }
+
+GpsTrack read_gpx(const std::string& file) { return parse_gpx(read_gps_file(file), file); }
+
+GpsTrack parse_gps_track(const std::string& text, const std::string& file) {
+  // By content, not by name: loggers write NMEA as .txt, .log or .nmea, and GeoJSON as .json.
+  std::size_t first = 0;
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) first = 3;  // UTF-8 byte order mark
+  while (first < text.size() && std::isspace(static_cast<unsigned char>(text[first]))) ++first;
+  const char c = first < text.size() ? text[first] : '\0';
+  if (c == '$' || c == '!') return parse_nmea(text, file);
+  if (c == '{') return parse_geojson_track(text, file);
+  if (c == '<' || text.compare(0, 2, "\xFF\xFE") == 0 || text.compare(0, 2, "\xFE\xFF") == 0)
+    return parse_gpx(text, file);
+  throw file_error(file,
+                   "not a GPS track: expected GPX (XML), NMEA 0183 sentences ($GPRMC, $GPGGA) or GeoJSON");
+}
+
+GpsTrack read_gps_track(const std::string& file) { return parse_gps_track(read_gps_file(file), file); }
 
 void GpsMatchOptions::check() const {
   if (!std::isfinite(time_offset_s))

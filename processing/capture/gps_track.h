@@ -11,17 +11,35 @@
 
 namespace plenopath {
 
-struct GpxTrack {
+struct GpsTrack {
   std::vector<GpsSample> samples;  // time_s relative to epoch_unix_s, sorted by time
   double epoch_unix_s = 0.0;       // UTC time of the first sample, seconds since 1970-01-01
-  std::string name;                // <trk><name>, if any
-  int samples_without_time = 0;    // points dropped because they had no <time>
+  std::string name;                // <trk><name> or the GeoJSON feature's name, if any
+  int samples_without_time = 0;    // points dropped because they had no time
+  std::vector<std::string> notes;  // what was skipped and why, for the author
 };
+using GpxTrack = GpsTrack;
 
-// Reads <trkpt> (all tracks and segments), or <rtept> when there are no track points. Throws Error naming
-// the file (and line) when it cannot be read, is not GPX, or a point has a bad latitude/longitude/time.
-GpxTrack read_gpx(const std::string& file);
-GpxTrack parse_gpx(const std::string& text, const std::string& file_name_for_errors);
+// A GPS track in any format the studio reads, recognised by content (not by the file name): GPX 1.0/1.1,
+// NMEA 0183 logs, GeoJSON. Throws Error naming the file when it is none of them or cannot be read.
+GpsTrack read_gps_track(const std::string& file);
+GpsTrack parse_gps_track(const std::string& text, const std::string& file_name_for_errors);
+
+// GPX through expat: <trkpt> (all tracks and segments), or <rtept> when there are no track points; any
+// encoding expat knows plus windows-1252. Throws Error naming the file (and line) when it is not
+// well-formed XML, not GPX, or a point has a bad latitude/longitude/time.
+GpsTrack read_gpx(const std::string& file);
+GpsTrack parse_gpx(const std::string& text, const std::string& file_name_for_errors);
+
+// NMEA 0183: $--RMC (date, time, position; status A only) and $--GGA (altitude, matched to the RMC of the
+// same second; a log of GGA alone has times of day on 1970-01-01, days counted across midnight). Sentences
+// with a bad checksum or fields are skipped and counted in notes. Throws Error when no position is left.
+GpsTrack parse_nmea(const std::string& text, const std::string& file_name_for_errors);
+
+// GeoJSON: a LineString (or MultiLineString) Feature with per-vertex times in properties.coordTimes or
+// properties.times (togeojson's convention, ISO 8601 or Unix milliseconds), or Point Features with
+// properties.time. Coordinates are [lon, lat, (alt)]. Throws Error naming the file otherwise.
+GpsTrack parse_geojson_track(const std::string& text, const std::string& file_name_for_errors);
 
 // ISO 8601 UTC time ("2024-05-01T10:20:30.5Z", offsets like "+02:00" honoured) as Unix seconds.
 // Throws Error on malformed text.
