@@ -19,6 +19,8 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
       last_(new QSpinBox(this)),
       stride_(new QSpinBox(this)),
       depth_(new QLineEdit(this)),
+      gps_(new QLineEdit(this)),
+      gps_offset_(new QDoubleSpinBox(this)),
       height_(new QDoubleSpinBox(this)),
       rate_(new QDoubleSpinBox(this)) {
   setWindowTitle(tr("Import capture"));
@@ -32,6 +34,15 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
   auto* depth_row = new QHBoxLayout;
   depth_row->addWidget(depth_, 1);
   depth_row->addWidget(depth_button);
+  auto* gps_button = new QPushButton(tr("File…"), this);
+  auto* gps_row = new QHBoxLayout;
+  gps_row->addWidget(gps_, 1);
+  gps_row->addWidget(gps_button);
+  gps_->setPlaceholderText(tr("optional: GPX, NMEA or GeoJSON track, matched to frames by time"));
+  gps_offset_->setRange(-1e7, 1e7);
+  gps_offset_->setDecimals(2);
+  gps_offset_->setSuffix(tr(" s"));
+  gps_offset_->setToolTip(tr("Time of the first frame on the GPS track, counted from its first point"));
   first_->setRange(0, 100000000);
   last_->setRange(-1, 100000000);
   last_->setValue(-1);
@@ -53,6 +64,8 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
   form->addRow(tr("Last frame"), last_);
   form->addRow(tr("Keep every"), stride_);
   form->addRow(tr("Depth folder"), depth_row);
+  form->addRow(tr("GPS track"), gps_row);
+  form->addRow(tr("GPS time of frame 0"), gps_offset_);
   form->addRow(tr("Camera height"), height_);
   form->addRow(tr("Frame rate (folders)"), rate_);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
@@ -74,6 +87,12 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
     const QString f = QFileDialog::getExistingDirectory(this, tr("Depth maps"), depth_->text());
     if (!f.isEmpty()) depth_->setText(f);
   });
+  connect(gps_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(
+        this, tr("GPS track"), gps_->text(),
+        tr("GPS tracks (*.gpx *.nmea *.nma *.txt *.log *.geojson *.json);;All files (*)"));
+    if (!f.isEmpty()) gps_->setText(f);
+  });
   connect(buttons, &QDialogButtonBox::accepted, this, [this] {
     if (!source_->text().isEmpty()) accept();
   });
@@ -89,6 +108,8 @@ CaptureImportChoices CaptureImportDialog::choices() const {
   c.options.depth_folder = depth_->text().toStdString();
   c.options.folder_frame_rate = rate_->value();
   c.camera_height_m = height_->value();
+  c.gps_file = gps_->text().trimmed().toStdString();
+  c.gps_time_offset_s = gps_offset_->value();
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
+#include "processing/capture/gps_track.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
@@ -21,9 +22,20 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
     choices.options.check();
     const std::unique_ptr<FrameSource> source = FrameSource::open(choices.source, choices.options);
     progress.checkpoint(0.9, "listing " + std::to_string(source->frame_count()) + " frames");
+    const bool same_source = project.capture.source == source->source();
     project.capture = capture_from_frame_source(*source, project.capture);
+    if (!same_source) project.capture.gps_track.clear();  // another capture's track would be wrong
     if (choices.camera_height_m > 0) project.capture.camera_height_m = choices.camera_height_m;
-    progress.report(1.0, std::to_string(source->frame_count()) + " frames");
+    std::string gps_summary;
+    if (!choices.gps_file.empty()) {
+      progress.checkpoint(0.95, "reading the GPS track " + choices.gps_file);
+      const GpsTrack track = read_gps_track(choices.gps_file);
+      project.capture.gps_track = track.samples;
+      project.capture.gps_time_offset_s = choices.gps_time_offset_s;
+      gps_summary = ", " + std::to_string(track.samples.size()) + " GPS points";
+      for (const std::string& note : track.notes) gps_summary += " (" + note + ")";
+    }
+    progress.report(1.0, std::to_string(source->frame_count()) + " frames" + gps_summary);
     return TaskResult{std::move(project), widgets::kCaptureChanged};
   };
 }

@@ -8,6 +8,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
@@ -30,7 +31,10 @@
 #include <string>
 #include <vector>
 
+#include "app/studio/studio_tasks.h"
+#include "model/error.h"
 #include "processing/visibility/visibility.h"
+#include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
 #include "widgets/capture_import_dialog.h"
@@ -625,6 +629,55 @@ TEST(CaptureImportDialog, HandsOverTheChoices) {
   EXPECT_EQ(c.options.last_frame, 90);
   EXPECT_EQ(c.options.stride, 3);
   EXPECT_DOUBLE_EQ(c.camera_height_m, 1.6);
+  EXPECT_TRUE(c.gps_file.empty()) << "GPS is optional";
+
+  QLineEdit* gps = nullptr;
+  for (QLineEdit* edit : dialog.findChildren<QLineEdit*>())
+    if (edit->placeholderText().contains("GPX")) gps = edit;
+  ASSERT_NE(gps, nullptr);
+  gps->setText(" /data/walk.nmea ");
+  const auto doubles = dialog.findChildren<QDoubleSpinBox*>();
+  QDoubleSpinBox* offset = nullptr;
+  for (QDoubleSpinBox* d : doubles)
+    if (d->suffix() == " s") offset = d;
+  ASSERT_NE(offset, nullptr);
+  offset->setValue(-2.5);
+  EXPECT_EQ(dialog.choices().gps_file, "/data/walk.nmea");
+  EXPECT_DOUBLE_EQ(dialog.choices().gps_time_offset_s, -2.5);
+}
+
+TEST(CaptureImport, AttachesTheGpsTrackInAnyFormat) {
+  // The test project's 30 frames with an NMEA log of three fixes one second apart (hand-written; the
+  // reference sentence of NMEA 0183 moved by 1 s steps, checksums left out as the standard allows).
+  const auto& t = test::test_project("import-gps");
+  QTemporaryDir dir;
+  const QString nmea = dir.filePath("walk.log");
+  {
+    QFile f(nmea);
+    ASSERT_TRUE(f.open(QIODevice::WriteOnly));
+    for (int s = 19; s <= 21; ++s)
+      f.write(
+          QString("$GPRMC,1235%1,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W\r\n").arg(s).toLatin1());
+  }
+  widgets::CaptureImportChoices choices;
+  choices.source = QDir(t.folder).filePath("frames").toStdString();
+  choices.gps_file = nmea.toStdString();
+  choices.gps_time_offset_s = 0.5;
+  const widgets::TaskResult result = studio::import_capture_task(choices)(t.project, null_progress());
+  EXPECT_EQ(result.project.capture.frame_count, 30);
+  ASSERT_EQ(result.project.capture.gps_track.size(), 3u);
+  EXPECT_DOUBLE_EQ(result.project.capture.gps_track[2].time_s, 2.0);
+  EXPECT_NEAR(result.project.capture.gps_track[0].latitude_deg, 48.0 + 7.038 / 60.0, 1e-12);
+  EXPECT_DOUBLE_EQ(result.project.capture.gps_time_offset_s, 0.5);
+
+  // A file that is no GPS track stops the import with its name.
+  choices.gps_file = QDir(t.folder).filePath("test.plenopath").toStdString();
+  try {
+    studio::import_capture_task(choices)(t.project, null_progress());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("test.plenopath"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
