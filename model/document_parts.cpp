@@ -101,9 +101,9 @@ bool operator==(const TourSettings& l, const TourSettings& r) {
 }
 
 bool operator==(const Project& l, const Project& r) {
-  return std::tie(l.plan, l.capture, l.path, l.anchors, l.visibility, l.keyframes, l.hotspots, l.geo,
-                  l.tour) ==
-         std::tie(r.plan, r.capture, r.path, r.anchors, r.visibility, r.keyframes, r.hotspots, r.geo, r.tour);
+  return std::tie(l.plan, l.capture, l.path, l.path_points, l.anchors, l.visibility, l.keyframes, l.hotspots,
+                  l.geo, l.tour) == std::tie(r.plan, r.capture, r.path, r.path_points, r.anchors,
+                                             r.visibility, r.keyframes, r.hotspots, r.geo, r.tour);
 }
 
 }  // namespace plenopath

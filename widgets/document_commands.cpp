@@ -12,7 +12,10 @@ namespace {
 void copy_parts(const Project& from, Project& to, unsigned flags) {
   if (flags & kPlanChanged) to.plan = from.plan;
   if (flags & kCaptureChanged) to.capture = from.capture;
-  if (flags & kPathChanged) to.path = from.path;
+  if (flags & kPathChanged) {
+    to.path = from.path;
+    to.path_points = from.path_points;
+  }
   if (flags & kVisibilityChanged) to.visibility = from.visibility;
   if (flags & kKeyframesChanged) to.keyframes = from.keyframes;
   if (flags & kHotspotsChanged) to.hotspots = from.hotspots;

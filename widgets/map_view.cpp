@@ -59,6 +59,7 @@ constexpr double kConeZ = -0.01;
 constexpr double kPlanZ = 0.0;
 constexpr double kCriticalZ = 0.005;
 constexpr double kGhostPathZ = 0.008;
+constexpr double kPlacementZ = 0.009;
 constexpr double kPathZ = 0.01;
 constexpr double kKeyframeZ = 0.02;
 constexpr double kResidualZ = 0.025;
@@ -205,6 +206,9 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   const double anchor[3] = {0.82, 0.0, 0.55};
   const double white[3] = {1.0, 1.0, 1.0};
   ghost_path_actor_ = make_actor(ghost, 2.0, 0.6);
+  const double placement[3] = {0.5, 0.3, 0.85};
+  placement_actor_ = make_actor(placement, 2.5, 0.55);
+  renderer_->AddActor(placement_actor_);
   residual_actor_ = make_actor(anchor, 2.0);
   anchor_actor_ = make_actor(anchor, 1.0);
   anchor_actor_->GetProperty()->SetPointSize(13.0f);  // squares: distinct from the round keyframes
@@ -539,8 +543,71 @@ bool MapView::event(QEvent* e) {
   return QVTKOpenGLNativeWidget::event(e);
 }
 
+void MapView::set_placement_ghosts(std::vector<MapPlacementGhost> ghosts) {
+  ghosts_ = std::move(ghosts);
+  for (const auto& label : placement_labels_) renderer_->RemoveViewProp(label);
+  placement_labels_.clear();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  for (const MapPlacementGhost& g : ghosts_) {
+    if (g.polyline.empty()) continue;
+    lines->InsertNextCell(static_cast<vtkIdType>(g.polyline.size()));
+    for (const Eigen::Vector2d& p : g.polyline)
+      lines->InsertCellPoint(points->InsertNextPoint(p.x(), p.y(), kPlacementZ));
+    // The label at the ghost's middle frame, in plan coordinates so that it follows pan and zoom.
+    const Eigen::Vector2d& at = g.polyline[g.polyline.size() / 2];
+    auto label = vtkSmartPointer<vtkTextActor>::New();
+    label->SetInput(g.label.c_str());
+    label->GetTextProperty()->SetFontSize(13);
+    label->GetTextProperty()->SetColor(0.4, 0.2, 0.7);
+    label->GetTextProperty()->SetBold(true);
+    label->GetPositionCoordinate()->SetCoordinateSystemToWorld();
+    label->GetPositionCoordinate()->SetValue(at.x(), at.y(), kPlacementZ);
+    renderer_->AddViewProp(label);
+    placement_labels_.push_back(label);
+  }
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(points);
+  data->SetLines(lines);
+  set_polydata(placement_actor_, data);
+  request_render();
+}
+
+int MapView::placement_ghost_near(const QPoint& pixel, double radius_px) {
+  const Eigen::Vector2d q = plan_point_at(pixel);
+  int best = -1;
+  double best_distance = radius_px * metres_per_pixel();
+  for (std::size_t k = 0; k < ghosts_.size(); ++k) {
+    const std::vector<Eigen::Vector2d>& line = ghosts_[k].polyline;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      // Distance to the segment from this vertex to the next (to the vertex for the last one).
+      const Eigen::Vector2d a = line[i], b = i + 1 < line.size() ? line[i + 1] : line[i];
+      const Eigen::Vector2d ab = b - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double d = (a + t * ab - q).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = static_cast<int>(k);
+      }
+    }
+  }
+  return best;
+}
+
 void MapView::handle_click(const QPoint& pixel) {
   const int best = frame_near(pixel, 15.0);  // a click within 15 pixels of the path counts
+  // A ghost wins when it is nearer than the path (within 10 pixels).
+  if (const int ghost = placement_ghost_near(pixel, 10.0); ghost >= 0) {
+    const Eigen::Vector2d q = plan_point_at(pixel);
+    const double path_distance =
+        best >= 0 ? (drawn_path_.frames[static_cast<std::size_t>(best)].position() - q).norm()
+                  : std::numeric_limits<double>::infinity();
+    if (path_distance > 3.0 * metres_per_pixel()) {
+      const MapPlacementGhost& g = ghosts_[static_cast<std::size_t>(ghost)];
+      emit placement_clicked(g.piece, g.candidate);
+      return;
+    }
+  }
   if (best < 0) return;
   document_.set_current_position(best);
   emit frame_clicked(best);

@@ -9,6 +9,8 @@
 // fast warp, about a millisecond for 30 000 frames); the release is one undo step that places the anchor and
 // refines the path with all anchors (widgets/anchor_commands.h). Anchors are magenta squares, each with a
 // thin line to where its frame is on the path (the residual).
+// Placement ghosts: other placements registration found for a piece of the path (issue 19), drawn as thin
+// violet lines with their rank and score; a click on one asks for it (placement_clicked).
 // Renders are requested and coalesced (one per event-loop turn), never forced by the model.
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkNew.h>
@@ -17,6 +19,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "model/anchors.h"
@@ -34,6 +37,14 @@ class ProjectDocument;
 // The envelope polygon of a plan point (counter-clockwise, metres), empty when there is none. Set by the
 // application once a visibility index exists for the current plan.
 using EnvelopeFunction = std::function<std::vector<Eigen::Vector2d>(const Eigen::Vector2d&)>;
+
+// Another placement of one piece of the path, as the map draws it.
+struct MapPlacementGhost {
+  std::vector<Eigen::Vector2d> polyline;  // the piece's frames at that placement, plan metres
+  std::string label;                      // "2 · score 0.71"
+  int piece = 0;
+  int candidate = 0;  // index into that piece's registration candidates
+};
 
 class MapView : public QVTKOpenGLNativeWidget {
   Q_OBJECT
@@ -62,11 +73,19 @@ class MapView : public QVTKOpenGLNativeWidget {
   // The path as previewed during an anchor drag (empty when not dragging).
   const CameraPath& anchor_preview() const { return drag_.preview; }
 
+  // Replaces the placement ghosts (empty: none).
+  void set_placement_ghosts(std::vector<MapPlacementGhost> ghosts);
+  const std::vector<MapPlacementGhost>& placement_ghosts() const { return ghosts_; }
+  // Index into placement_ghosts() of the ghost nearest `pixel` within `radius_px`, or -1.
+  int placement_ghost_near(const QPoint& pixel, double radius_px);
+
  signals:
   // The user clicked on the path near the frame at `position` (the document has already moved there).
   void frame_clicked(int position);
   // A short message for the status bar (what a drag does, or why an anchor could not be placed).
   void message(const QString& text);
+  // The user clicked on a placement ghost (nearer than the path): candidate `candidate` of piece `piece`.
+  void placement_clicked(int piece, int candidate);
 
  protected:
   bool event(QEvent* event) override;
@@ -120,7 +139,10 @@ class MapView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkActor> residual_actor_;
   vtkSmartPointer<vtkActor> anchor_actor_;
   vtkSmartPointer<vtkActor> anchor_core_actor_;
-  vtkSmartPointer<vtkActor> hotspot_actor_;  // hotspots (widgets/map_hotspot_markers.h)
+  vtkSmartPointer<vtkActor> hotspot_actor_;                      // hotspots (widgets/map_hotspot_markers.h)
+  vtkSmartPointer<vtkActor> placement_actor_;                    // placement ghosts
+  std::vector<vtkSmartPointer<vtkTextActor>> placement_labels_;  // their labels, at the plan point
+  std::vector<MapPlacementGhost> ghosts_;
   vtkSmartPointer<vtkTextActor> caption_;
   vtkSmartPointer<vtkTextActor> hint_;
   std::vector<int> path_cells_;  // visibility cell of each path position (colours)

@@ -3,8 +3,11 @@
 #include <QFileInfo>
 #include <QUndoStack>
 #include <algorithm>
+#include <filesystem>
 #include <utility>
 
+#include "model/error.h"
+#include "model/path_points.h"
 #include "model/project_io.h"
 
 namespace plenopath::widgets {
@@ -20,6 +23,7 @@ bool ProjectDocument::is_modified() const { return !undo_stack_->isClean(); }
 
 void ProjectDocument::reset(Project project, const QString& file_name) {
   undo_stack_->clear();
+  load_warning_.clear();
   project_ = std::move(project);
   file_name_ = file_name.isEmpty() ? QString() : QFileInfo(file_name).absoluteFilePath();
   current_position_ = 0;
@@ -31,10 +35,28 @@ void ProjectDocument::reset(Project project, const QString& file_name) {
   emit modified_changed(false);
 }
 
-void ProjectDocument::load(const QString& file) { reset(load_project(file.toStdString()), file); }
+void ProjectDocument::load(const QString& file) {
+  Project project = load_project(file.toStdString());
+  QString warning;
+  const std::string points_file = points_file_beside(file.toStdString());
+  std::error_code ec;
+  if (std::filesystem::exists(points_file, ec)) {
+    try {
+      project.path_points = read_path_points_file(points_file);
+    } catch (const Error& e) {
+      warning = QString::fromStdString(
+          std::string(e.what()) + " (the tracker's points are not loaded: Place path on plan needs them)");
+    }
+  }
+  reset(std::move(project), file);
+  load_warning_ = warning;
+}
 
 void ProjectDocument::save(const QString& file) {
   save_project(project_, file.toStdString());
+  // The points beside the project; an older sidecar stays when there are none (never delete data).
+  if (!project_.path_points.empty())
+    write_path_points_file(project_.path_points, points_file_beside(file.toStdString()));
   const QString absolute = QFileInfo(file).absoluteFilePath();
   if (absolute != file_name_) {
     file_name_ = absolute;

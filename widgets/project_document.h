@@ -43,8 +43,11 @@ class ProjectDocument : public QObject {
   // Replaces the document (new, opened or recovered project): clears the undo stack, resets the view state.
   void reset(Project project, const QString& file_name);
   // Loads / saves a project file; throws plenopath::Error naming the file. save() marks the stack clean.
+  // The tracker's points (Project::path_points) go to and come from the sidecar PROJECT.points.json: a
+  // sidecar that cannot be read does not stop the load; load_warning() then says why the points are missing.
   void load(const QString& file);
   void save(const QString& file);
+  const QString& load_warning() const { return load_warning_; }
 
   // The one way undo commands change the project. Emits changed(flags) now, or at the end of the
   // outermost batch.
@@ -80,6 +83,7 @@ class ProjectDocument : public QObject {
  private:
   Project project_;
   QString file_name_;
+  QString load_warning_;
   QUndoStack* undo_stack_;
   int batch_depth_ = 0;
   unsigned pending_flags_ = 0;

@@ -26,6 +26,7 @@
 
 #include "app/studio/autosave.h"
 #include "app/studio/envelope_service.h"
+#include "app/studio/placement_service.h"
 #include "app/studio/profile_service.h"
 #include "app/studio/reactions.h"
 #include "app/studio/refine_anchors_reaction.h"
@@ -96,6 +97,9 @@ MainWindow::MainWindow(QWidget* parent)
   envelopes_ = new EnvelopeService(*document_, *map_, this);
   connect(map_, &widgets::MapView::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 6000); });
+  placement_ = new PlacementService(*document_, *map_, this);
+  connect(placement_, &PlacementService::message, this,
+          [this](const QString& text) { statusBar()->showMessage(text, 10000); });
 
   create_docks();
   create_actions();
@@ -289,6 +293,12 @@ void MainWindow::create_actions() {
   QAction* visibility = process->addAction(tr("Compute &visibility"));
   visibility->setShortcut(tr("Ctrl+Shift+V"));
   new ComputeVisibilityReaction(visibility, *this);
+  QAction* place = process->addAction(tr("&Place path on plan"));
+  place->setShortcut(tr("Ctrl+Shift+P"));
+  place->setStatusTip(
+      tr("Put the tracked path on the plan by its points on the walls; the runners-up are "
+         "drawn as ghosts, click one to take it instead. One undo step"));
+  new PlacePathOnPlanReaction(place, *this);
   QAction* resample = process->addAction(tr("&Resample keyframes"), this, [this] { sampling_->resample(0); });
   resample->setShortcut(tr("Ctrl+Shift+K"));
   QAction* refine = process->addAction(tr("Refine path with &anchors"));
@@ -344,7 +354,10 @@ bool MainWindow::open_project(const QString& file) {
   }
   RecentFilesMenu::add(document_->file_name());
   recover_autosave_if_wanted(document_->file_name());
-  statusBar()->showMessage(tr("Opened %1").arg(document_->file_name()), 5000);
+  if (!document_->load_warning().isEmpty())
+    statusBar()->showMessage(document_->load_warning(), 15000);
+  else
+    statusBar()->showMessage(tr("Opened %1").arg(document_->file_name()), 5000);
   return true;
 }
 

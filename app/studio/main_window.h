@@ -27,6 +27,7 @@ namespace plenopath::studio {
 
 class Autosave;
 class EnvelopeService;
+class PlacementService;
 class ProfileService;
 
 class MainWindow : public QMainWindow {
@@ -61,6 +62,7 @@ class MainWindow : public QMainWindow {
   widgets::HotspotsPanel* hotspots_panel() const { return hotspots_; }
   EnvelopeService* envelopes() const { return envelopes_; }
   ProfileService* profiles() const { return profiles_; }
+  PlacementService& placement() const { return *placement_; }
 
   // Questions the window asks; tests replace them with fixed answers.
   std::function<bool(const QString& autosave_file)> ask_recovery;
@@ -95,6 +97,7 @@ class MainWindow : public QMainWindow {
   widgets::HotspotsPanel* hotspots_ = nullptr;
   EnvelopeService* envelopes_ = nullptr;
   ProfileService* profiles_ = nullptr;
+  PlacementService* placement_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QToolButton* cancel_ = nullptr;
   QLabel* task_label_ = nullptr;

@@ -7,11 +7,14 @@
 #include <QMenu>
 #include <QMessageBox>
 #include <QSettings>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <algorithm>
 #include <exception>
+#include <memory>
 
 #include "app/studio/main_window.h"
+#include "app/studio/placement_service.h"
 #include "app/studio/studio_tasks.h"
 #include "model/error.h"
 #include "model/path_io.h"
@@ -24,6 +27,24 @@
 #include "widgets/walk_view.h"
 
 namespace plenopath::studio {
+
+namespace {
+
+// Once the running task's result is the document's, hands what registration found to the placement
+// service and says in the status bar how the placement went (one-shot: the next task connects anew).
+void offer_when_applied(MainWindow& window, std::shared_ptr<PlacementOutcome> outcome) {
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = QObject::connect(
+      &window.tasks(), &widgets::TaskRunner::finished, &window, [&window, outcome, connection](bool applied) {
+        QObject::disconnect(*connection);
+        if (!applied) return;
+        window.placement().offer(std::move(outcome->choices));
+        if (!outcome->summary.empty())
+          window.statusBar()->showMessage(QString::fromStdString(outcome->summary), 15000);
+      });
+}
+
+}  // namespace
 
 Reaction::Reaction(QAction* action, MainWindow& window) : QObject(action), window_(window), action_(action) {
   connect(action, &QAction::triggered, this, [this] { on_triggered(); });
@@ -154,7 +175,32 @@ void TrackPathReaction::on_triggered() {
                             QObject::tr("Replace the current path with one tracked from the frames? "
                                         "(Undo brings the old one back.)")) != QMessageBox::Yes)
     return;
-  window_.tasks().start(QObject::tr("Track camera path"), track_path_task());
+  auto outcome = std::make_shared<PlacementOutcome>();
+  if (window_.tasks().start(QObject::tr("Track camera path"), track_path_task(outcome)))
+    offer_when_applied(window_, outcome);
+}
+
+PlacePathOnPlanReaction::PlacePathOnPlanReaction(QAction* action, MainWindow& window)
+    : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void PlacePathOnPlanReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  const std::string why = placement_precondition(p);
+  action()->setEnabled(!window_.tasks().is_running() && !p.path.empty() && !p.plan.empty());
+  // The reason is worth more than a greyed-out item: the status tip says what is missing.
+  action()->setToolTip(why.empty() ? QObject::tr("Place the path on the plan by its points on the walls")
+                                   : QString::fromStdString(why));
+}
+
+void PlacePathOnPlanReaction::on_triggered() {
+  auto outcome = std::make_shared<PlacementOutcome>();
+  if (window_.tasks().start(QObject::tr("Place path on plan"), place_path_on_plan_task(outcome)))
+    offer_when_applied(window_, outcome);
 }
 
 RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window)

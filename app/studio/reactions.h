@@ -102,6 +102,17 @@ class TrackPathReaction : public Reaction {
   void update_enabled();
 };
 
+// Process > Place path on plan (placement.h): a task with progress and Cancel, one undo step; the
+// candidates go to the window's PlacementService (ghosts on the map).
+class PlacePathOnPlanReaction : public Reaction {
+ public:
+  PlacePathOnPlanReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 // The File ▸ Open Recent menu, kept in QSettings ("recent_files").
 class RecentFilesMenu : public QObject {
   Q_OBJECT

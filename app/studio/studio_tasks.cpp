@@ -40,8 +40,8 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
   };
 }
 
-widgets::TaskFunction track_path_task() {
-  return [](Project project, Progress& progress) {
+widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placement) {
+  return [placement](Project project, Progress& progress) {
     if (project.capture.empty()) throw Error("the project has no capture to track");
     const std::shared_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
     const int n = source->frame_count();
@@ -49,6 +49,9 @@ widgets::TaskFunction track_path_task() {
     EgomotionOptions options;
     options.camera_height_m = project.capture.camera_height_m;
     options.check();
+    // With a plan, placing the path takes the last tenth of the progress.
+    const bool place = !project.plan.empty();
+    SubProgress tracking_progress(progress, 0.0, place ? 0.9 : 1.0);
     // run() gives reading and tracking the frames the first half of the progress.
     EgomotionResult result = EgomotionTracker::run(
         n,
@@ -56,7 +59,7 @@ widgets::TaskFunction track_path_task() {
           progress.throw_if_cancelled();
           return source->read(i);
         },
-        options, progress);
+        options, tracking_progress);
     // The tracker numbers frames 0..n-1 in source order; the project uses capture indices.
     std::vector<int> positions(result.path.size());
     for (int i = 0; i < static_cast<int>(positions.size()); ++i)
@@ -70,7 +73,37 @@ widgets::TaskFunction track_path_task() {
     renumber_frames(&result.path, positions);
     result.path.scale_source = result.scale_source;
     project.path = std::move(result.path);
+    project.path_points = std::move(result.tracked_points);
     project.visibility = {};  // cells belong to the old path
+    if (!project.plan.empty()) {
+      std::string summary;
+      PlacementChoices choices;
+      if (const std::string why = placement_precondition(project); !why.empty()) {
+        summary = "tracked; not placed on the plan: " + why;
+      } else {
+        SubProgress placing(progress, 0.9, 1.0, "placing the path on the plan");
+        try {
+          choices = place_project_on_plan(project, placing, false, &summary);
+        } catch (const Cancelled&) {
+          throw;
+        } catch (const Error& e) {  // the tracked path is still worth having, unplaced
+          summary = std::string("tracked; not placed on the plan: ") + e.what();
+        }
+      }
+      progress.report(1.0, summary);
+      if (placement) *placement = {std::move(choices), summary};
+    }
+    return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
+  };
+}
+
+widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement) {
+  return [placement](Project project, Progress& progress) {
+    std::string summary;
+    progress.checkpoint(0.0, "placing " + std::to_string(project.path.size()) + " frames on the plan");
+    PlacementChoices choices = place_project_on_plan(project, progress, true, &summary);
+    progress.report(1.0, summary);
+    if (placement) *placement = {std::move(choices), summary};
     return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
   };
 }

@@ -1,6 +1,9 @@
 #pragma once
 // The studio's background tasks: each wraps a processing step as a TaskFunction (snapshot in, changed
 // project out) so it runs on a worker with progress and cancel, and lands as one undo step.
+#include <memory>
+
+#include "app/studio/placement.h"
 #include "widgets/capture_import_dialog.h"
 #include "widgets/task_runner.h"
 
@@ -9,8 +12,13 @@ namespace plenopath::studio {
 // Scans the folder or video and sets the project's capture (keeps GPS data already there).
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices);
 // The camera path from the capture's frames alone (processing/egomotion): progress and cancel reach Ceres
-// through the tracker's callback. Scale from the capture's camera height when known.
-widgets::TaskFunction track_path_task();
+// through the tracker's callback. Scale from the capture's camera height when known. The tracker's points
+// are kept with the path (Project::path_points); when the project has a plan the path is then placed on it
+// by itself (placement.h), and `placement` (optional) gets what registration found.
+widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placement = nullptr);
+// Process > Place path on plan: the path placed on the plan by its tracked points (placement.h); fails with
+// the reason when no piece fits. `placement` gets the candidates.
+widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement);
 // Visibility events, cells and critical lines along the path (processing/visibility/visibility.h).
 widgets::TaskFunction compute_visibility_task();
 // The path refined with the anchors as priors (Ceres pose graph with a drift model, plus the capture's GPS
