@@ -22,6 +22,8 @@ void ParallelPairOptions::check() const {
   if (!(cell_size >= 0.0) || !std::isfinite(cell_size))
     throw Error("ParallelPairOptions.cell_size must be >= 0");
   if (max_cells_per_segment < 1) throw Error("ParallelPairOptions.max_cells_per_segment must be >= 1");
+  if (max_candidates_per_segment < 1)
+    throw Error("ParallelPairOptions.max_candidates_per_segment must be >= 1");
 }
 
 int ParallelPairs::nearest(int segment) const {
@@ -110,9 +112,11 @@ ParallelPairs find_parallel_pairs(const std::vector<Segment2>& segments, const P
     const Eigen::Vector2d a = origin[i];
     const Eigen::Vector2d u = dir[i];
     const double li = length[i];
+    int examined = 0;
     auto consider = [&](int j) {
       if (j == i || seen[j] == i || !usable[j]) return;
       seen[j] = i;
+      ++examined;
       const Eigen::Vector2d& v = dir[j];
       if (std::abs(u.x() * v.y() - u.y() * v.x()) > sin_max_angle) return;
       const Eigen::Vector2d p0 = segments[j].a - a, p1 = segments[j].b - a;
@@ -138,9 +142,13 @@ ParallelPairs find_parallel_pairs(const std::vector<Segment2>& segments, const P
                   [&](std::int64_t cx, std::int64_t cy) {
                     for (int dx = -rings; dx <= rings; ++dx)
                       for (int dy = -rings; dy <= rings; ++dy) {
+                        if (examined >= options.max_candidates_per_segment) return;
                         auto it = grid.find(key_of(cx + dx, cy + dy));
                         if (it == grid.end()) continue;
-                        for (int j : it->second) consider(j);
+                        for (int j : it->second) {
+                          if (examined >= options.max_candidates_per_segment) return;
+                          consider(j);
+                        }
                       }
                   });
   }

@@ -17,6 +17,11 @@ struct ParallelPairOptions {
   double cell_size = 0.0;             // grid cell; 0 = max_gap
   // Segments spanning more cells than this (strays at 1e20, a 60 km line) are left out of the search.
   int max_cells_per_segment = 100000;
+  // Neighbours examined per segment (then the search moves on to the next segment). Real drawings stay far
+  // below it (a wall line has a few dozen neighbours); thousands of lines stacked in one place (a block
+  // inserted as a dense array, a fuzzed file) would make the search quadratic: 78 620 segments took minutes
+  // before this bound.
+  int max_candidates_per_segment = 4096;
 
   void check() const;  // throws plenopath::Error naming the field
 };

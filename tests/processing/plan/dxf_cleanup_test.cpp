@@ -98,6 +98,21 @@ TEST(DxfCleanup, DuplicateZeroLengthAndOverlap) {
   EXPECT_NEAR(total_length(out), 10.0 + 9.0, 1e-6);  // the merged piece ends at (9, 3.0004)
 }
 
+TEST(DxfCleanup, ThousandsOfCopiesInOnePlaceAreDuplicates) {
+  // A block inserted as a dense array of copies: 2000 of each of three walls, drawn either way round.
+  std::vector<PlanSegment> in;
+  for (int k = 0; k < 2000; ++k) {
+    in.push_back(k % 2 ? seg({0, 0}, {5, 0}) : seg({5, 0}, {0, 0}));
+    in.push_back(seg({5, 0}, {5, 4}));
+    in.push_back(seg({0, 4}, {5, 4}));
+  }
+  CleanupCounts counts;
+  const auto out = clean_segments(in, kTol, &counts);
+  EXPECT_EQ(counts.duplicates_dropped, 3 * 2000 - 3);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_NEAR(total_length(out), 5.0 + 4.0 + 5.0, 1e-9);
+}
+
 TEST(DxfCleanup, CrossingsAndTJunctionsSplitPerLayer) {
   CleanupCounts counts;
   // A cross on WALLS; a T whose stem stops 0.4 mm short of the bar on DOORS; a crossing of two layers.

@@ -36,6 +36,22 @@ TEST(ParallelPairs, AWallDrawnAsTwoLines) {
   EXPECT_EQ(q.left[0], 0);
 }
 
+TEST(ParallelPairs, AStackOfCopiesElsewhereDoesNotHideAWall) {
+  // 5000 copies of one line (a fuzzed file, a block arrayed in place) and, 3 units away, a wall drawn as two
+  // faces 0.2 apart: the search bounds its work per segment, and the wall's faces still pair.
+  std::vector<Segment2> s(5000, Segment2{{0, 0}, {2, 0}});
+  s.push_back({{0, 3}, {4, 3}});
+  s.push_back({{0, 3.2}, {4, 3.2}});
+  ParallelPairOptions options;
+  options.max_candidates_per_segment = 64;
+  const ParallelPairs p = find_parallel_pairs(s, options);
+  EXPECT_EQ(p.nearest(5000), p.nearest(5001));
+  ASSERT_GE(p.nearest(5000), 0);
+  EXPECT_NEAR(p.pairs[static_cast<std::size_t>(p.nearest(5000))].gap, 0.2, 1e-12);
+  options.max_candidates_per_segment = 0;
+  EXPECT_THROW(options.check(), Error);
+}
+
 TEST(ParallelPairs, ShortOverlapsAndBadOptions) {
   // 0.5 apart but overlapping 0.6 only: less than 2 gaps long, not a wall.
   EXPECT_TRUE(find_parallel_pairs({{{0, 0}, {0.6, 0}}, {{0, 0.5}, {0.6, 0.5}}}, {}).pairs.empty());
