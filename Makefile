@@ -44,9 +44,11 @@ bench: build
 
 fuzz: CMAKE_FLAGS += -DPLENOPATH_BUILD_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPLENOPATH_BUILD_STUDIO=OFF
 fuzz: BUILD_DIR := build-fuzz
+FUZZ_TARGETS := fuzz_dxf_import fuzz_gps_track fuzz_image_header fuzz_project fuzz_path fuzz_anchors fuzz_rig fuzz_tour_json
+FUZZ_SECONDS ?= 600
 fuzz: configure
-	@cmake --build $(BUILD_DIR) -j $(JOBS)
-	@bash tests/fuzz/run-long.sh $(BUILD_DIR)
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
+	@bash tests/fuzz/run-long.sh $(BUILD_DIR) $(FUZZ_SECONDS)
 
 screenshot: build
 	@bash app/take-screenshot.sh $(BUILD_DIR) resources/screenshots/studio.png

@@ -9,6 +9,15 @@ endif()
 add_library(plenopath_warnings INTERFACE)
 target_compile_options(plenopath_warnings INTERFACE -Wall -Wextra -Wpedantic -Werror)
 
+# The libFuzzer build instruments every project library (coverage for libFuzzer, ASan + UBSan checks); the
+# fuzz targets themselves add -fsanitize=fuzzer (tests/fuzz/CMakeLists.txt).
+if(PLENOPATH_BUILD_FUZZ)
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+                      -fno-sanitize=vptr -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)
+endif()
+
 if(PLENOPATH_SANITIZE)
   string(REPLACE "," ";" _sanitizers "${PLENOPATH_SANITIZE}")
   foreach(_s IN LISTS _sanitizers)

@@ -133,6 +133,9 @@ nlohmann::json read_json_file(const std::string& file) {
     const bool truncated = e.byte >= text.size();
     throw file_error(file, "invalid JSON at line " + std::to_string(line) +
                                (truncated ? " (the file looks truncated)" : ""));
+  } catch (const nlohmann::json::exception& e) {
+    // Not a syntax error: a number too large for a double (1e400) and the like.
+    throw file_error(file, std::string("unreadable JSON: ") + e.what());
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <vector>
 
 namespace plenopath {
@@ -11,7 +12,7 @@ namespace {
 
 using Bytes = std::vector<unsigned char>;
 
-bool read_at(std::ifstream& in, std::uint64_t offset, std::size_t n, Bytes& out) {
+bool read_at(std::istream& in, std::uint64_t offset, std::size_t n, Bytes& out) {
   out.assign(n, 0);
   in.clear();
   in.seekg(static_cast<std::streamoff>(offset));
@@ -33,7 +34,7 @@ std::uint32_t be32(const unsigned char* p) {
   return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
 }
 
-ImageHeader read_jpeg(std::ifstream& in, std::uint64_t size) {
+ImageHeader read_jpeg(std::istream& in, std::uint64_t size) {
   // Walk the marker segments up to the frame header (SOFn) and the scan (SOS).
   std::uint64_t pos = 2;
   ImageHeader h;
@@ -83,15 +84,17 @@ ImageHeader read_jpeg(std::ifstream& in, std::uint64_t size) {
   return h;
 }
 
-ImageHeader read_png(std::ifstream& in, std::uint64_t size) {
+ImageHeader read_png(std::istream& in, std::uint64_t size) {
   Bytes b;
   if (size < 33 || !read_at(in, 8, 16, b)) return fail("png", "corrupt PNG (truncated header)");
   if (std::memcmp(&b[4], "IHDR", 4) != 0) return fail("png", "corrupt PNG (no IHDR chunk)");
   ImageHeader h;
   h.format = "png";
-  h.width = static_cast<int>(be32(&b[8]));
-  h.height = static_cast<int>(be32(&b[12]));
-  if (h.width <= 0 || h.height <= 0) return fail("png", "corrupt PNG (bad size)");
+  const std::uint32_t width = be32(&b[8]), height = be32(&b[12]);
+  if (width == 0 || height == 0 || width > 1u << 30 || height > 1u << 30)
+    return fail("png", "corrupt PNG (bad size)");
+  h.width = static_cast<int>(width);
+  h.height = static_cast<int>(height);
   Bytes tail;
   if (!read_at(in, size - 8, 4, tail) || std::memcmp(tail.data(), "IEND", 4) != 0)
     return fail("png", "corrupt PNG (truncated: no IEND chunk)");
@@ -99,7 +102,7 @@ ImageHeader read_png(std::ifstream& in, std::uint64_t size) {
   return h;
 }
 
-ImageHeader read_tiff(std::ifstream& in, std::uint64_t size, bool little) {
+ImageHeader read_tiff(std::istream& in, std::uint64_t size, bool little) {
   auto u16 = [little](const unsigned char* p) { return little ? (p[0] | (p[1] << 8)) : be16(p); };
   auto u32 = [little](const unsigned char* p) {
     return little ? (std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) |
@@ -120,6 +123,7 @@ ImageHeader read_tiff(std::ifstream& in, std::uint64_t size, bool little) {
     const unsigned char* p = &b[static_cast<std::size_t>(e) * 12];
     const int tag = u16(p), type = u16(p + 2);
     const std::uint32_t value = type == 3 ? static_cast<std::uint32_t>(u16(p + 8)) : u32(p + 8);
+    if ((tag == 256 || tag == 257) && value > 1u << 30) return fail("tiff", "corrupt TIFF (bad size)");
     if (tag == 256) h.width = static_cast<int>(value);
     if (tag == 257) h.height = static_cast<int>(value);
   }
@@ -127,7 +131,7 @@ ImageHeader read_tiff(std::ifstream& in, std::uint64_t size, bool little) {
   return h;
 }
 
-ImageHeader read_exr(std::ifstream& in, std::uint64_t size) {
+ImageHeader read_exr(std::istream& in, std::uint64_t size) {
   Bytes b;
   read_at(in, 8, static_cast<std::size_t>(std::min<std::uint64_t>(size - 8, 1u << 16)), b);
   ImageHeader h;
@@ -152,8 +156,13 @@ ImageHeader read_exr(std::ifstream& in, std::uint64_t size) {
     if (name == "dataWindow" && type == "box2i" && n == 16) {
       std::int32_t box[4];
       std::memcpy(box, &b[p], 16);  // little-endian on every machine we build for
-      h.width = box[2] - box[0] + 1;
-      h.height = box[3] - box[1] + 1;
+      // In 64 bits: a hostile window's extent overflows 32.
+      const std::int64_t width = std::int64_t(box[2]) - box[0] + 1,
+                         height = std::int64_t(box[3]) - box[1] + 1;
+      if (width <= 0 || height <= 0 || width > 1 << 30 || height > 1 << 30)
+        return fail("exr", "corrupt EXR (bad data window)");
+      h.width = static_cast<int>(width);
+      h.height = static_cast<int>(height);
     }
     p += n;
   }
@@ -164,9 +173,7 @@ ImageHeader read_exr(std::ifstream& in, std::uint64_t size) {
 
 }  // namespace
 
-ImageHeader read_image_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fail("", "unreadable file");
+ImageHeader read_image_header(std::istream& in) {
   in.seekg(0, std::ios::end);
   const std::streamoff end = in.tellg();
   if (end <= 0) return fail("", "empty file");
@@ -188,6 +195,17 @@ ImageHeader read_image_header(const std::string& path) {
     return fail("", std::string("unreadable header: ") + e.what());
   }
   return fail("", "not a JPEG, PNG, TIFF or EXR image (unknown content)");
+}
+
+ImageHeader read_image_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail("", "unreadable file");
+  return read_image_header(static_cast<std::istream&>(in));
+}
+
+ImageHeader read_image_header_from_memory(const std::string& bytes) {
+  std::istringstream in(bytes, std::ios::binary);
+  return read_image_header(static_cast<std::istream&>(in));
 }
 
 }  // namespace plenopath

@@ -266,6 +266,15 @@ TEST_F(ProjectIoTest, TruncatedJsonIsReportedWithFileName) {
   EXPECT_NE(e.find("truncated"), std::string::npos) << e;
 }
 
+TEST_F(ProjectIoTest, NumberTooLargeForADoubleIsAnErrorNamingTheFile) {
+  // Found by fuzz.project_replay: nlohmann reports 1e400 as out_of_range, not as a parse error, and it
+  // escaped load_project as a foreign exception.
+  write("big.plenopath", R"({"format":"plenopath-project","version":2,"tour":{"title":"x"},"n":1e400})");
+  const std::string e = error_of(file("big.plenopath"));
+  EXPECT_NE(e.find("big.plenopath"), std::string::npos) << e;
+  EXPECT_NE(e.find("1e400"), std::string::npos) << e;
+}
+
 TEST_F(ProjectIoTest, NewerVersionIsRefusedClearly) {
   write("new.plenopath", R"({"format":"plenopath-project","version":99})");
   const std::string e = error_of(file("new.plenopath"));

@@ -108,3 +108,40 @@ TEST(CaptureRobustness, TruncatedAndMutatedImagesNeverCrashTheHeaderCheck) {
 
 }  // namespace
 }  // namespace plenopath
+
+namespace plenopath {
+namespace {
+
+TEST(ImageHeader, SizesBeyondIntAreCorruptNotNegative) {
+  // Found by fuzz.image_header_replay: a TIFF width of 0xFFFFFFFF came back as -1 with ok = true.
+  std::string tiff("II*\0\x08\0\0\0\x01\0\0\x01\x04\0\x01\0\0\0\xFF\xFF\xFF\xFF\0\0\0\0", 26);
+  const ImageHeader t = read_image_header_from_memory(tiff);
+  EXPECT_FALSE(t.ok);
+  EXPECT_NE(t.problem.find("bad size"), std::string::npos) << t.problem;
+
+  std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\x80\0\0\0\0\0\0\x10", 24);
+  png += std::string(9, '\0') + "IEND" + std::string(4, '\0');
+  const ImageHeader p = read_image_header_from_memory(png);
+  EXPECT_FALSE(p.ok);
+  EXPECT_NE(p.problem.find("bad size"), std::string::npos) << p.problem;
+
+  // An EXR data window from INT_MIN to INT_MAX: its width overflows 32 bits.
+  std::string exr("v/1\x01\x02\0\0\0", 8);
+  exr += std::string("dataWindow\0box2i\0", 17) + std::string("\x10\0\0\0", 4);
+  exr += std::string("\0\0\0\x80\0\0\0\x80\xFF\xFF\xFF\x7F\xFF\xFF\xFF\x7F", 16);
+  exr += std::string(1, '\0');
+  const ImageHeader e = read_image_header_from_memory(exr);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.problem.find("bad data window"), std::string::npos) << e.problem;
+
+  // The well-formed 32 x 16 TIFF of the fuzz seeds reads with its size (written by ImageMagick).
+  std::ifstream in(std::string(PLENOPATH_TEST_DATA_DIR) + "/fuzz/image/a.tif", std::ios::binary);
+  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const ImageHeader s = read_image_header_from_memory(seed);
+  EXPECT_TRUE(s.ok) << s.problem;
+  EXPECT_EQ(s.width, 32);
+  EXPECT_EQ(s.height, 16);
+}
+
+}  // namespace
+}  // namespace plenopath
