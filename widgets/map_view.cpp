@@ -549,13 +549,15 @@ void MapView::set_placement_ghosts(std::vector<MapPlacementGhost> ghosts) {
   placement_labels_.clear();
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> lines;
-  for (const MapPlacementGhost& g : ghosts_) {
+  for (std::size_t k = 0; k < ghosts_.size(); ++k) {
+    const MapPlacementGhost& g = ghosts_[k];
     if (g.polyline.empty()) continue;
     lines->InsertNextCell(static_cast<vtkIdType>(g.polyline.size()));
     for (const Eigen::Vector2d& p : g.polyline)
       lines->InsertCellPoint(points->InsertNextPoint(p.x(), p.y(), kPlacementZ));
-    // The label at the ghost's middle frame, in plan coordinates so that it follows pan and zoom.
-    const Eigen::Vector2d& at = g.polyline[g.polyline.size() / 2];
+    // The label on the ghost, in plan coordinates so that it follows pan and zoom; ghosts of one piece
+    // often cross at their middles, so each label sits at its own fraction of its ghost.
+    const Eigen::Vector2d& at = g.polyline[g.polyline.size() * (k % 3 + 1) / 4];
     auto label = vtkSmartPointer<vtkTextActor>::New();
     label->SetInput(g.label.c_str());
     label->GetTextProperty()->SetFontSize(13);

@@ -22,6 +22,7 @@
 #include "widgets/capture_import_dialog.h"
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
+#include "widgets/map_view.h"
 #include "widgets/project_document.h"
 #include "widgets/task_runner.h"
 #include "widgets/walk_view.h"
@@ -39,8 +40,10 @@ void offer_when_applied(MainWindow& window, std::shared_ptr<PlacementOutcome> ou
         QObject::disconnect(*connection);
         if (!applied) return;
         window.placement().offer(std::move(outcome->choices));
-        if (!outcome->summary.empty())
-          window.statusBar()->showMessage(QString::fromStdString(outcome->summary), 15000);
+        QString text = QString::fromStdString(outcome->summary);
+        if (!window.map_view()->placement_ghosts().empty())
+          text += QObject::tr(" — other placements in violet on the map: click one to take it");
+        if (!text.isEmpty()) window.statusBar()->showMessage(text, 20000);
       });
 }
 

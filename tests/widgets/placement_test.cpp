@@ -7,6 +7,7 @@
 
 #include <QAction>
 #include <QFile>
+#include <QImage>
 #include <QMenuBar>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -126,6 +127,14 @@ TEST(Placement, PlaceOnPlanFindsBothFitsOfASymmetricRoomAndAGhostClickTakesTheOt
     if (nearest > far_distance) far_distance = nearest, far = i;
   }
   ASSERT_GT(far_distance, 0.5);
+  // The ghost is on screen in its violet (not only in the list).
+  map->render_now();
+  const QImage image = map->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+  if (qEnvironmentVariableIsSet("PLENOPATH_TEST_SAVE")) s.window.grab().save("/tmp/placement_ghosts.png");
+  const auto is_violet = [](QRgb c) {
+    return qRed(c) > 110 && qBlue(c) > qGreen(c) + 30 && qBlue(c) > qRed(c) + 20;  // not the path's blue
+  };
+  EXPECT_GT(test::count_near(image, map->widget_pixel_of(ghost->polyline[far]), 4, is_violet), 4);
   QTest::mouseClick(map, Qt::LeftButton, Qt::NoModifier, map->widget_pixel_of(ghost->polyline[far]));
   const CameraPath second = s.window.document().project().path;
   EXPECT_LT(placement_error(second, c.project.path, other), 0.05);
