@@ -14,6 +14,8 @@ find_package(EXPAT REQUIRED)
 
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(DXFLIB REQUIRED IMPORTED_TARGET dxflib)
+# Video through FFmpeg's own libraries: frame-exact seeking and real time stamps (processing/capture).
+pkg_check_modules(LIBAV REQUIRED IMPORTED_TARGET libavformat libavcodec libswscale libavutil)
 
 if(PLENOPATH_BUILD_STUDIO)
   find_package(Qt5 5.15 REQUIRED COMPONENTS Core Gui Widgets OpenGL Test Concurrent)

@@ -1,5 +1,6 @@
 #include "model/capture.h"
 
+#include <algorithm>
 #include <tuple>
 
 #include "model/error.h"
@@ -32,9 +33,28 @@ bool operator==(const GpsSample& l, const GpsSample& r) {
 
 bool operator==(const Capture& l, const Capture& r) {
   return std::tie(l.kind, l.source, l.frame_count, l.width, l.height, l.frame_rate, l.first_frame, l.stride,
-                  l.frame_names, l.depth_folder, l.gps_track, l.gps_time_offset_s, l.camera_height_m) ==
-         std::tie(r.kind, r.source, r.frame_count, r.width, r.height, r.frame_rate, r.first_frame, r.stride,
-                  r.frame_names, r.depth_folder, r.gps_track, r.gps_time_offset_s, r.camera_height_m);
+                  l.frame_names, l.frame_times_s, l.depth_folder, l.gps_track, l.gps_time_offset_s,
+                  l.camera_height_m) == std::tie(r.kind, r.source, r.frame_count, r.width, r.height,
+                                                 r.frame_rate, r.first_frame, r.stride, r.frame_names,
+                                                 r.frame_times_s, r.depth_folder, r.gps_track,
+                                                 r.gps_time_offset_s, r.camera_height_m);
+}
+
+double Capture::frame_time_s(int k) const {
+  if (k >= 0 && k < static_cast<int>(frame_times_s.size())) return frame_times_s[k];
+  const double rate = frame_rate > 0 ? frame_rate : 30.0;
+  return (first_frame + double(k) * std::max(1, stride)) / rate;
+}
+
+double Capture::time_at_index_s(int index) const {
+  const double rate = frame_rate > 0 ? frame_rate : 30.0;
+  if (kind != CaptureKind::kVideo) return frame_time_s(index);
+  if (frame_times_s.empty()) return index / rate;
+  // The nearest kept frame at or before the index (or the first), then frame_rate on from it.
+  const int step = std::max(1, stride);
+  const int k = std::clamp(index >= first_frame ? (index - first_frame) / step : 0, 0,
+                           static_cast<int>(frame_times_s.size()) - 1);
+  return frame_times_s[k] + (index - (first_frame + k * step)) / rate;
 }
 
 }  // namespace plenopath

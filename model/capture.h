@@ -27,12 +27,23 @@ struct Capture {
   int first_frame = 0;                   // video: first decoded frame number
   int stride = 1;                        // video/folder: keep every stride-th frame
   std::vector<std::string> frame_names;  // image folder: file names relative to source, in capture order
-  std::string depth_folder;              // optional; depth maps matched to frames by name
-  std::vector<GpsSample> gps_track;      // optional
-  double gps_time_offset_s = 0.0;        // capture time of frame 0 in the GPS track's clock
-  double camera_height_m = 0.0;          // 0 = unknown
+  // Video with a variable frame rate: each kept frame's presentation time, seconds after the video's frame 0
+  // (kept frame k is video frame first_frame + k * stride). Empty when the frames are evenly spaced at
+  // frame_rate, as nearly all are.
+  std::vector<double> frame_times_s;
+  std::string depth_folder;          // optional; depth maps matched to frames by name
+  std::vector<GpsSample> gps_track;  // optional
+  double gps_time_offset_s = 0.0;    // capture time of frame 0 in the GPS track's clock
+  double camera_height_m = 0.0;      // 0 = unknown
 
   bool empty() const { return kind == CaptureKind::kNone; }
+  // Seconds from the source's frame 0 to kept frame k: its stored time, else (first_frame + k * stride) /
+  // frame_rate.
+  double frame_time_s(int k) const;
+  // The same at a path frame's index (PathFrame::index: a video's frame number; an image folder's position
+  // in the capture): a video frame between kept ones, or outside them, is placed at frame_rate from the
+  // nearest kept frame.
+  double time_at_index_s(int index) const;
 };
 bool operator==(const Capture& l, const Capture& r);
 

@@ -96,19 +96,21 @@ json capture_to_json(const Capture& c, const std::string& base) {
   for (const auto& g : c.gps_track)
     gps.push_back(
         {{"t", g.time_s}, {"lat", g.latitude_deg}, {"lon", g.longitude_deg}, {"alt", g.altitude_m}});
-  return {{"kind", to_string(c.kind)},
-          {"source", path_relative_to(c.source, base)},
-          {"frame_count", c.frame_count},
-          {"width", c.width},
-          {"height", c.height},
-          {"frame_rate", c.frame_rate},
-          {"first_frame", c.first_frame},
-          {"stride", c.stride},
-          {"frame_names", c.frame_names},
-          {"depth_folder", path_relative_to(c.depth_folder, base)},
-          {"gps_track", gps},
-          {"gps_time_offset_s", c.gps_time_offset_s},
-          {"camera_height_m", c.camera_height_m}};
+  json out = {{"kind", to_string(c.kind)},
+              {"source", path_relative_to(c.source, base)},
+              {"frame_count", c.frame_count},
+              {"width", c.width},
+              {"height", c.height},
+              {"frame_rate", c.frame_rate},
+              {"first_frame", c.first_frame},
+              {"stride", c.stride},
+              {"frame_names", c.frame_names},
+              {"depth_folder", path_relative_to(c.depth_folder, base)},
+              {"gps_track", gps},
+              {"gps_time_offset_s", c.gps_time_offset_s},
+              {"camera_height_m", c.camera_height_m}};
+  if (!c.frame_times_s.empty()) out["frame_times_s"] = c.frame_times_s;  // variable-rate video only
+  return out;
 }
 
 Capture capture_from_json(const JsonReader& r, const std::string& base) {
@@ -130,6 +132,17 @@ Capture capture_from_json(const JsonReader& r, const std::string& base) {
   if (c.stride < 1) r.at("stride").fail("must be >= 1");
   if (auto names = r.find("frame_names"))
     for (std::size_t i = 0; i < names->size(); ++i) c.frame_names.push_back(names->at(i).string());
+  if (auto times = r.find("frame_times_s")) {
+    if (times->size() != static_cast<std::size_t>(c.frame_count))
+      times->fail("has " + std::to_string(times->size()) + " times for " + std::to_string(c.frame_count) +
+                  " frames");
+    for (std::size_t i = 0; i < times->size(); ++i) {
+      const double t = times->at(i).number();
+      if (!std::isfinite(t) || (i > 0 && !(t > c.frame_times_s.back())))
+        times->at(i).fail("must be a finite time after the previous frame's");
+      c.frame_times_s.push_back(t);
+    }
+  }
   c.depth_folder = path_resolved_against(r.string_or("depth_folder", ""), base);
   if (auto gps = r.find("gps_track"))
     for (std::size_t i = 0; i < gps->size(); ++i) {

@@ -249,7 +249,11 @@ void TimelinePanel::update_controls() {
   }
   const Project& p = document_.project();
   const double rate = p.capture.frame_rate > 0 ? p.capture.frame_rate : 30.0;
-  QString text = tr("of %1 · %2 s").arg(n).arg(position / rate, 0, 'f', 2);
+  // The frame's own time: variable-rate video is not evenly spaced at the rate.
+  const double time_s = p.capture.frame_times_s.empty()
+                            ? position / rate
+                            : p.capture.frame_time_s(position) - p.capture.frame_time_s(0);
+  QString text = tr("of %1 · %2 s").arg(n).arg(time_s, 0, 'f', 2);
   if (!p.path.empty() && position < static_cast<int>(p.path.size())) {
     const std::vector<double> s = p.path.arc_lengths();
     text += tr(" · %1 m of %2 m").arg(s[position], 0, 'f', 1).arg(s.back(), 0, 'f', 1);

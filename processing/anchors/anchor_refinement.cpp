@@ -402,9 +402,8 @@ std::vector<GpsPrior> gps_priors_for_path(const Project& project) {
       !(project.capture.frame_rate > 0))
     return {};
   std::vector<double> times;
-  for (const PathFrame& f : project.path.frames)
-    times.push_back((project.capture.first_frame + f.index * project.capture.stride) /
-                    project.capture.frame_rate);
+  // A frame's own time (variable-rate video), not its index over the rate.
+  for (const PathFrame& f : project.path.frames) times.push_back(project.capture.time_at_index_s(f.index));
   GpsMatchOptions match;
   match.time_offset_s = project.capture.gps_time_offset_s;
   std::vector<GpsPrior> gps = gps_priors(project.capture.gps_track, times, project.geo, match);

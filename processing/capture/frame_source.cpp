@@ -9,11 +9,11 @@
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "model/error.h"
 #include "processing/capture/frame_source_internal.h"
 #include "processing/capture/image_header.h"
+#include "processing/capture/video_decoder.h"
 
 namespace fs = std::filesystem;
 
@@ -206,34 +206,15 @@ struct FolderBackend : Backend {
 struct VideoBackend : Backend {
   const FrameSource::Impl* impl = nullptr;
   std::mutex mutex;
-  cv::VideoCapture capture;
-  long long next_raw = 0;  // the raw frame number the next capture.read() returns
+  std::unique_ptr<VideoDecoder> decoder;  // frame-exact: decodes on when reading in order, else seeks
 
   cv::Mat read(int i) override {
     const long long raw = impl->numbers[i];
-    std::lock_guard<std::mutex> lock(mutex);
-    // Sequential reading is exact and fast; a short skip forward decodes through; anything else seeks.
-    constexpr long long kMaxGrabForward = 48;
-    if (raw < next_raw || raw - next_raw > kMaxGrabForward) {
-      capture.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(raw));
-      next_raw = raw;
-    }
-    while (next_raw < raw) {
-      if (!capture.grab()) {
-        const long long failed = next_raw;
-        next_raw = -1000000;  // unknown position: seek next time
-        throw file_error(impl->source, "frame " + std::to_string(failed) + " could not be decoded");
-      }
-      ++next_raw;
-    }
     cv::Mat frame;
-    const bool ok = capture.read(frame);
-    if (!ok || frame.empty()) {
-      next_raw = -1000000;
-      throw file_error(impl->source, "frame " + std::to_string(raw) + " could not be decoded");
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      frame = decoder->read(static_cast<int>(raw));
     }
-    ++next_raw;
-    frame = to_bgr8(frame);
     if (frame.cols != impl->width || frame.rows != impl->height)
       throw file_error(impl->source, "frame " + std::to_string(raw) + " is " + std::to_string(frame.cols) +
                                          "x" + std::to_string(frame.rows) + ", expected " +
@@ -531,55 +512,38 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
   impl->options = options;
   auto backend = std::make_unique<VideoBackend>();
   backend->impl = impl.get();
-  cv::VideoCapture& cap = backend->capture;
-  try {
-    cap.open(path, cv::CAP_FFMPEG);
-  } catch (const cv::Exception& e) {
-    throw file_error(path, std::string("cannot open video: ") + e.what());
-  }
-  if (!cap.isOpened())
-    throw file_error(path, "cannot open video (not a video, or a container/codec FFmpeg cannot read)");
-  double fps = cap.get(cv::CAP_PROP_FPS);
+  backend->decoder = std::make_unique<VideoDecoder>(path);  // throws Error naming the file
+  VideoDecoder& decoder = *backend->decoder;
+  double fps = decoder.frame_rate();
   if (!(fps > 0.0) || !std::isfinite(fps) || fps > 1000.0) fps = 30.0;
   impl->frame_rate = fps;
-  long long count = static_cast<long long>(std::llround(cap.get(cv::CAP_PROP_FRAME_COUNT)));
 
-  // The first frame tells the true size (and that the stream decodes at all).
-  cv::Mat first;
-  if (!cap.read(first) || first.empty()) throw file_error(path, "video has no decodable frame");
+  // The first frame tells the true size (and that the stream decodes at all); the last that the packets
+  // keep their promise. If either fails, only decoding every frame tells which frames there are.
+  const auto decodes = [&](int frame) {
+    try {
+      return decoder.read(frame);
+    } catch (const Error&) {
+      return cv::Mat();
+    }
+  };
+  const long long packet_count = decoder.frame_count();
+  cv::Mat first = packet_count > 0 ? decodes(0) : cv::Mat();
+  if (packet_count > 0 &&
+      (first.empty() || (packet_count > 1 && decodes(decoder.frame_count() - 1).empty()))) {
+    decoder.index_by_decoding();
+    first = decoder.frame_count() > 0 ? decodes(0) : cv::Mat();
+  }
+  if (first.empty()) throw file_error(path, "video has no decodable frame");
   impl->width = first.cols;
   impl->height = first.rows;
-  backend->next_raw = 1;
-
-  // The container's count can be missing or wrong: confirm that the last frame decodes, else count by
-  // decoding.
-  auto count_by_decoding = [&]() {
-    cap.set(cv::CAP_PROP_POS_FRAMES, 0.0);
-    long long n = 0;
-    while (cap.grab()) ++n;
-    cap.set(cv::CAP_PROP_POS_FRAMES, 0.0);
-    backend->next_raw = 0;
-    return n;
-  };
-  if (count <= 0) {
-    count = count_by_decoding();
-  } else if (count > 1) {
-    cap.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(count - 1));
-    cv::Mat last;
-    const bool ok = cap.read(last) && !last.empty();
-    backend->next_raw = count;
-    if (!ok) {
-      const long long decoded = count_by_decoding();
-      if (decoded < count)
-        impl->skipped.push_back({static_cast<int>(decoded), "frame " + std::to_string(decoded),
-                                 "missing: the stream ends after " + std::to_string(decoded) +
-                                     " frames though the "
-                                     "container says " +
-                                     std::to_string(count)});
-      count = decoded;
-    }
-  }
-  if (count <= 0) throw file_error(path, "video has no decodable frame");
+  const long long count = decoder.frame_count();
+  const long long promised =
+      std::max(packet_count, decoder.packets_end_early() ? decoder.container_frame_count() : 0);
+  if (count < promised)
+    impl->skipped.push_back({static_cast<int>(count), "frame " + std::to_string(count),
+                             "missing: the stream ends after " + std::to_string(count) +
+                                 " frames though the container says " + std::to_string(promised)});
   check_aspect(impl->width, impl->height, options.require_2to1, path);
 
   const long long last =
@@ -590,7 +554,8 @@ std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const Fra
   for (long long raw = options.first_frame; raw <= last; raw += options.stride) {
     impl->names.push_back("frame " + std::to_string(raw));
     impl->numbers.push_back(raw);
-    impl->timestamps.push_back(double(raw) / fps);
+    impl->timestamps.push_back(
+        decoder.time_s(static_cast<int>(raw)));  // the frame's own PTS: right for variable rates
   }
   impl->backend = std::move(backend);
   return impl;
@@ -784,6 +749,7 @@ cv::Mat FrameSource::read_depth(int i) {
 }
 
 Capture capture_from_frame_source(const FrameSource& source, Capture capture) {
+  constexpr double kEvenlySpacedToleranceS = 1e-4;
   if (source.kind() == CaptureKind::kNone)
     throw Error(source.source() + ": a generated capture cannot be stored in a project");
   capture.kind = source.kind();
@@ -798,6 +764,18 @@ Capture capture_from_frame_source(const FrameSource& source, Capture capture) {
   if (source.kind() == CaptureKind::kImageFolder) {
     capture.frame_names.reserve(source.frame_count());
     for (int i = 0; i < source.frame_count(); ++i) capture.frame_names.push_back(source.frame_name(i));
+  }
+  // Real time stamps only where they differ from the nominal rate (variable-rate video, phones): a
+  // constant-rate capture keeps its project file small.
+  capture.frame_times_s.clear();
+  if (source.kind() == CaptureKind::kVideo) {
+    const int step = std::max(1, source.options().stride);
+    bool even = true;
+    for (int i = 0; i < source.frame_count() && even; ++i)
+      even = std::abs(source.timestamp_s(i) - (source.options().first_frame + double(i) * step) /
+                                                  source.frame_rate()) <= kEvenlySpacedToleranceS;
+    if (!even)
+      for (int i = 0; i < source.frame_count(); ++i) capture.frame_times_s.push_back(source.timestamp_s(i));
   }
   capture.depth_folder = source.options().depth_folder;
   return capture;

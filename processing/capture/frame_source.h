@@ -42,8 +42,9 @@ struct SkippedFrame {
 class FrameSource {
  public:
   // Opens an image folder (JPEG, PNG, TIFF, EXR; natural sort of file names, so frame10 follows frame9) or
-  // a video file (MP4, MOV, MKV, AVI through OpenCV's FFmpeg backend). Throws Error naming the path when it
-  // does not exist, holds no usable frame, or the frames are not 2:1 (if options.require_2to1).
+  // a video file (MP4, MOV, MKV, AVI through FFmpeg: frame-exact, see video_decoder.h). Throws Error naming
+  // the path when it does not exist, holds no usable frame, or the frames are not 2:1 (if
+  // options.require_2to1).
   static std::unique_ptr<FrameSource> open(const std::string& folder_or_video,
                                            const FrameSourceOptions& options = {});
   // A multi-head capture: one image folder per head (in the rig file's head order) and the rig calibration
@@ -78,7 +79,8 @@ class FrameSource {
 
   std::string frame_name(int i) const;  // file name relative to the folder, or "frame N" for videos
   int frame_number(int i) const;        // video frame number, or the number in the file name (-1 if none)
-  double timestamp_s(int i) const;      // seconds from the source's frame 0 (video: frame number / rate)
+  double timestamp_s(int i) const;      // seconds from the source's frame 0 (video: the frame's own time
+                                        // stamp, so variable frame rates are right; folders: number / rate)
 
   cv::Mat read(int i);  // full frame, CV_8UC3 BGR; throws Error naming the file/frame
   // A small frame no wider than max_width (JPEG decodes at reduced size, so this is fast), CV_8UC3.
@@ -105,7 +107,8 @@ class FrameSource {
 };
 
 // A project's Capture for this source: kind, source, frame counts, size, rate, first frame, stride,
-// frame names (image folders), depth folder. GPS fields are left as they are in `capture_in`.
+// frame names (image folders), frame times (videos whose frames are not evenly spaced at the rate), depth
+// folder. GPS fields are left as they are in `capture_in`.
 Capture capture_from_frame_source(const FrameSource& source, Capture capture_in = {});
 
 // Natural order of file names: digit runs compare as numbers ("frame9" < "frame10"), the rest

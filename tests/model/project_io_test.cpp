@@ -333,6 +333,50 @@ TEST_F(ProjectIoTest, InvalidValuesAreRejected) {
   EXPECT_NE(error_of(file("q.plenopath")).find("/tour/jpeg_quality"), std::string::npos);
 }
 
+// Variable-rate video: the frames' own times travel with the capture; a list that does not fit is refused.
+TEST_F(ProjectIoTest, VideoFrameTimesRoundTripAndBadListsAreRejected) {
+  Project p;
+  p.capture.kind = CaptureKind::kVideo;
+  p.capture.source = file("walk.mp4");
+  p.capture.frame_count = 4;
+  p.capture.frame_rate = 30.0;
+  p.capture.first_frame = 10;
+  p.capture.stride = 2;
+  p.capture.frame_times_s = {0.5, 0.5 + 1.0 / 15, 0.5 + 2.0 / 15, 0.7};
+  save_project(p, file("vfr.plenopath"));
+  EXPECT_EQ(load_project(file("vfr.plenopath")).capture, p.capture);
+  save_project(Project{}, file("cfr.plenopath"));
+  EXPECT_FALSE(read_json_file(file("cfr.plenopath"))["capture"].contains("frame_times_s"))
+      << "evenly spaced captures store no list";
+
+  const std::string head = R"({"format":"plenopath-project","version":1,"capture":{"kind":"video",)";
+  write("n.plenopath", head + R"("frame_count":3,"frame_times_s":[0,0.1]}})");
+  EXPECT_NE(error_of(file("n.plenopath")).find("/capture/frame_times_s: has 2 times for 3 frames"),
+            std::string::npos)
+      << error_of(file("n.plenopath"));
+  write("o.plenopath", head + R"("frame_count":3,"frame_times_s":[0,0.2,0.1]}})");
+  EXPECT_NE(error_of(file("o.plenopath")).find("/capture/frame_times_s/2: must be a finite time after"),
+            std::string::npos)
+      << error_of(file("o.plenopath"));
+}
+
+TEST(CaptureTimes, KeptFramesAndVideoFrameNumbersMapToTime) {
+  Capture c;
+  c.kind = CaptureKind::kVideo;
+  c.frame_rate = 10.0;
+  c.first_frame = 4;
+  c.stride = 3;
+  c.frame_count = 3;
+  EXPECT_DOUBLE_EQ(c.frame_time_s(2), 1.0);      // video frame 4 + 2 * 3 = 10, at 10 fps
+  EXPECT_DOUBLE_EQ(c.time_at_index_s(10), 1.0);  // the same frame by its number
+  c.frame_times_s = {0.5, 0.9, 1.5};             // frames 4, 7, 10
+  EXPECT_DOUBLE_EQ(c.frame_time_s(1), 0.9);
+  EXPECT_DOUBLE_EQ(c.time_at_index_s(7), 0.9);
+  EXPECT_DOUBLE_EQ(c.time_at_index_s(8), 1.0);   // between kept frames: 0.1 s on from frame 7
+  EXPECT_DOUBLE_EQ(c.time_at_index_s(12), 1.7);  // after the last: 0.2 s on from frame 10
+  EXPECT_DOUBLE_EQ(c.time_at_index_s(2), 0.3);   // before the first: 0.2 s before frame 4
+}
+
 // A name this build does not know (a project from a newer studio, or edited by hand): an error naming the
 // file, the JSON path and the value.
 TEST_F(ProjectIoTest, UnknownNamesAreRefusedNamingFileAndValue) {

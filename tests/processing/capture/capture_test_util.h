@@ -35,11 +35,11 @@ class TempFolder {
 
 constexpr int kStripes = 8;
 
-// A w x h frame showing `number` (0..255) in stripes across its upper half.
-inline cv::Mat numbered_frame(int number, int width = 256, int height = 128) {
+// A w x h frame showing `number` (0..2^stripes - 1) in stripes across its upper half.
+inline cv::Mat numbered_frame(int number, int width = 256, int height = 128, int stripes = kStripes) {
   cv::Mat frame(height, width, CV_8UC3, cv::Scalar(60, 90, 120));
-  const int stripe = width / kStripes;
-  for (int k = 0; k < kStripes; ++k) {
+  const int stripe = width / stripes;
+  for (int k = 0; k < stripes; ++k) {
     const bool on = (number >> k) & 1;
     cv::rectangle(frame, cv::Rect(k * stripe, 0, stripe, height / 2),
                   on ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 0), cv::FILLED);
@@ -48,10 +48,10 @@ inline cv::Mat numbered_frame(int number, int width = 256, int height = 128) {
 }
 
 // Reads the number back (the stripes' centres, well away from block edges).
-inline int decode_frame_number(const cv::Mat& frame) {
-  const int stripe = frame.cols / kStripes;
+inline int decode_frame_number(const cv::Mat& frame, int stripes = kStripes) {
+  const int stripe = frame.cols / stripes;
   int number = 0;
-  for (int k = 0; k < kStripes; ++k) {
+  for (int k = 0; k < stripes; ++k) {
     const cv::Rect centre(k * stripe + stripe / 4, frame.rows / 8, stripe / 2, frame.rows / 4);
     const cv::Scalar mean = cv::mean(frame(centre));
     if ((mean[0] + mean[1] + mean[2]) / 3.0 > 128.0) number |= 1 << k;
