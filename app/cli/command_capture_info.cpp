@@ -1,14 +1,17 @@
 // `plenopath capture-info DIR|VIDEO [--first N] [--last N] [--stride S] [--depth DIR] [--gps FILE] [--json]`:
 // what a capture holds before it is imported: frames, size, rate, skipped frames with reasons, depth and
-// GPS matches. A folder holding rig.json and one folder per head is a multi-head capture.
+// GPS matches; for videos whether the frame rate varies and what the file says about its 360° projection
+// and initial orientation. A folder holding rig.json and one folder per head is a multi-head capture.
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
+#include "model/error.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/gps_track.h"
+#include "processing/capture/spherical_video.h"
 
 namespace plenopath::cli {
 namespace {
@@ -27,6 +30,31 @@ struct Options {
   bool verify = false;
   bool json = false;
 };
+
+// The file's 360° metadata; a malformed box is reported, not fatal (the frames may still be fine).
+nlohmann::json spherical_summary(const std::string& video) {
+  SphericalVideoInfo info;
+  try {
+    info = read_spherical_video_info(video);
+  } catch (const Error& e) {
+    return {{"error", e.what()}};
+  }
+  nlohmann::json s = {{"metadata", info.metadata},
+                      {"projection", to_string(info.projection)},
+                      {"equirectangular", info.equirectangular()}};
+  if (info.spherical) {
+    s["stereo"] = to_string(info.stereo);
+    s["yaw_deg"] = info.yaw_deg;
+    s["pitch_deg"] = info.pitch_deg;
+    s["roll_deg"] = info.roll_deg;
+    s["crop"] = {{"top", info.crop_top},
+                 {"bottom", info.crop_bottom},
+                 {"left", info.crop_left},
+                 {"right", info.crop_right}};
+    s["software"] = info.software;
+  }
+  return s;
+}
 
 nlohmann::json summarize(const Options& o) {
   FrameSourceOptions options;
@@ -56,6 +84,10 @@ nlohmann::json summarize(const Options& o) {
                             {"last_name", source->frame_name(n - 1)},
                             {"heads", source->head_count()},
                             {"skipped", skipped}};
+  if (source->kind() == CaptureKind::kVideo) {
+    summary["variable_frame_rate"] = !capture_from_frame_source(*source).frame_times_s.empty();
+    summary["spherical"] = spherical_summary(o.source);
+  }
   if (!o.depth.empty())
     summary["depth"] = {{"folder", o.depth},
                         {"matched", source->depth_match_count()},
@@ -88,6 +120,20 @@ void print_text(const nlohmann::json& s) {
   std::cout << "Frames    " << s["frames"] << " of " << s["size"][0] << "x" << s["size"][1] << " at "
             << s["frame_rate"].get<double>() << " fps, " << s["duration_s"].get<double>() << " s ("
             << s["first_name"].get<std::string>() << " .. " << s["last_name"].get<std::string>() << ")\n";
+  if (s.value("variable_frame_rate", false))
+    std::cout << "          variable frame rate: times from the video's time stamps\n";
+  if (s.contains("spherical")) {
+    const nlohmann::json& v = s["spherical"];
+    if (v.contains("error"))
+      std::cout << "360       metadata unreadable: " << v["error"].get<std::string>() << "\n";
+    else if (v["metadata"].get<std::string>().empty())
+      std::cout << "360       no spherical metadata in the file\n";
+    else
+      std::cout << "360       " << v["projection"].get<std::string>() << ", "
+                << v["stereo"].get<std::string>() << " (" << v["metadata"].get<std::string>()
+                << "); initial view yaw " << v["yaw_deg"].get<double>() << "°, pitch "
+                << v["pitch_deg"].get<double>() << "°, roll " << v["roll_deg"].get<double>() << "°\n";
+  }
   if (s["heads"].get<int>() > 0) std::cout << "Heads     " << s["heads"] << " (stitched on the fly)\n";
   std::cout << "Skipped   " << s["skipped"].size() << "\n";
   for (const auto& k : s["skipped"])
