@@ -140,13 +140,16 @@ struct VideoDecoder::Impl {
     std::vector<IndexEntry> entries;
     bool first = true;
     bool usable = true;
+    long long packets = 0;  // shown or not
     for (;;) {
       const int r = av_read_frame(format, packet);
       if (r < 0) {
-        packets_end_early = r != AVERROR_EOF;
+        // A read error, or fewer packets than the container's sample table lists: a file cut short.
+        packets_end_early = r != AVERROR_EOF || (container_count > 0 && packets < container_count);
         break;
       }
       if (packet->stream_index == stream) {
+        ++packets;
         if (first) {
           start_ts = packet->dts != AV_NOPTS_VALUE ? packet->dts : packet->pts;
           first = false;

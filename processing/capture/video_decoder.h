@@ -36,8 +36,8 @@ class VideoDecoder {
   int height() const;
   double frame_rate() const;       // nominal frames per second as FFmpeg guesses it; 0 if unknown
   double time_s(int frame) const;  // the frame's PTS in seconds after frame 0's
-  // What the container says it holds (0 = not said), and whether reading its packets stopped on an error
-  // before the end of the file.
+  // What the container says it holds (0 = not said), and whether reading its packets stopped early: on a
+  // read error, or with fewer packets than the container lists (a recording cut short).
   long long container_frame_count() const;
   bool packets_end_early() const;
   bool indexed_by_decoding() const;

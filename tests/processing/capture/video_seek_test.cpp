@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "model/error.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/video_decoder.h"
 #include "tests/processing/capture/capture_test_util.h"
@@ -18,6 +20,9 @@ namespace plenopath {
 namespace {
 
 constexpr int kWidth = 320, kHeight = 160, kBits = 10, kFrames = 300;
+// -sc_threshold 0 / scenecut=0 and b-adapt=0: fixed GOPs and every B-frame slot used, whatever the content.
+constexpr const char* kH264Options =
+    "-c:v libx264 -preset veryfast -bf 3 -g 30 -sc_threshold 0 -x264-params b-adapt=0 -pix_fmt yuv420p";
 
 // Frame k: its number in stripes above, a block moving below (motion for the codec to predict, so a frame
 // decoded from the wrong references would differ).
@@ -107,26 +112,57 @@ TEST_P(VideoSeek, RandomSeeksGiveTheFramesOfSequentialDecoding) {
     ASSERT_TRUE(same_pixels(seeker.read(i), frames[i])) << "stride 7 at frame " << i;
 }
 
-// -sc_threshold 0 / scenecut=0 and b-adapt=0: fixed GOPs and every B-frame slot used, whatever the content.
 INSTANTIATE_TEST_SUITE_P(
     Codecs, VideoSeek,
-    ::testing::Values(
-        SeekCase{"seek_h264_bf3_v1.mp4",
-                 "-c:v libx264 -preset veryfast -bf 3 -g 30 -sc_threshold 0 -x264-params b-adapt=0 "
-                 "-pix_fmt yuv420p"},
-        SeekCase{"seek_hevc_bf4_opengop_v1.mp4",
-                 "-c:v libx265 -preset veryfast -x265-params "
-                 "bframes=4:b-adapt=0:keyint=30:min-keyint=30:open-gop=1:scenecut=0:log-level=error "
-                 "-tag:v hvc1 -pix_fmt yuv420p"},
-        SeekCase{"seek_h264_bf3_v1.mkv",
-                 "-c:v libx264 -preset veryfast -bf 3 -g 30 -sc_threshold 0 -x264-params b-adapt=0 "
-                 "-pix_fmt yuv420p"}),
+    ::testing::Values(SeekCase{"seek_h264_bf3_v1.mp4", kH264Options},
+                      SeekCase{
+                          "seek_hevc_bf4_opengop_v1.mp4",
+                          "-c:v libx265 -preset veryfast -x265-params "
+                          "bframes=4:b-adapt=0:keyint=30:min-keyint=30:open-gop=1:scenecut=0:log-level=error "
+                          "-tag:v hvc1 -pix_fmt yuv420p"},
+                      SeekCase{"seek_h264_bf3_v1.mkv", kH264Options}),
     [](const auto& info) {
       std::string n = info.param.file;
       for (char& c : n)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return n;
     });
+
+// A recording cut short (the MP4's sample table, written first, lists 300 frames; the file holds 60% of
+// them): the missing frames are listed, each frame that decodes shows the number its time stamp says, and
+// one that does not gives an Error naming the file.
+TEST(VideoSeekDamaged, CutShortRecordingListsMissingFramesAndKeepsTimesRight) {
+  test::require_ffmpeg();
+  if (HasFatalFailure()) return;
+  const std::string full =
+      test::cached_test_video("seek_h264_bf3_v1.mp4", kFrames, "30", kH264Options, test_frame);
+  if (HasFailure()) return;
+  test::TempFolder dir;
+  const std::string fast = dir / "faststart.mp4";
+  test::command_output("ffmpeg -v error -y -i '" + full + "' -c copy -movflags +faststart '" + fast + "'");
+  std::ifstream in(fast, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = dir / "cut.mp4";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() * 6 / 10);
+
+  auto source = FrameSource::open(cut);
+  ASSERT_GT(source->frame_count(), 100);
+  ASSERT_LT(source->frame_count(), kFrames);
+  ASSERT_EQ(source->skipped().size(), 1u);
+  EXPECT_NE(source->skipped()[0].reason.find("though the container says 300"), std::string::npos)
+      << source->skipped()[0].reason;
+  int failed = 0;
+  for (int i = 0; i < source->frame_count(); ++i) {
+    const int number = static_cast<int>(std::lround(source->timestamp_s(i) * 30));
+    try {
+      EXPECT_EQ(test::decode_frame_number(source->read(i), kBits), number) << "frame " << i;
+    } catch (const Error& e) {
+      ++failed;
+      EXPECT_NE(std::string(e.what()).find("cut.mp4"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_LE(failed, 3) << "only frames at the cut may fail";
+}
 
 // Variable frame rate: 60 frames at 30 fps, 60 at 15 fps, 60 at 24 fps (a phone slowing down in the dark).
 double vfr_truth_s(int k) {
