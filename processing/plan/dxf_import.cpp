@@ -190,13 +190,12 @@ void read_layers(const std::vector<DxfTag>& tags, const Section& s, Drawing* d) 
     PlanLayer layer;
     int colour = 7, flags = 0;
     for (const DxfTag* t = e.begin + 1; t != e.end; ++t) {
-      double v = 0.0;
       if (t->code == 2) layer.name = t->value;
-      if (t->code == 62 && dxf_number(*t, &v)) colour = static_cast<int>(v);
-      if (t->code == 70 && dxf_number(*t, &v)) flags = static_cast<int>(v);
+      if (t->code == 62) dxf_integer(*t, &colour);
+      if (t->code == 70) dxf_integer(*t, &flags);
     }
     if (layer.name.empty()) continue;
-    layer.color = std::clamp(std::abs(colour), 0, 256);
+    layer.color = std::abs(std::clamp(colour, -256, 256));  // abs(INT_MIN) would overflow
     layer.visible = colour >= 0 && !(flags & 1);
     d->layers[layer.name] = layer;
   }
@@ -250,17 +249,17 @@ void read_blocks(const std::vector<DxfTag>& tags, const Section& s, Drawing* d, 
     if (entities[i].kind() != "BLOCK") continue;
     Block block;
     block.line = entities[i].line();
-    double flags = 0.0;
+    int flags = 0;
     Eigen::Vector3d base = Eigen::Vector3d::Zero();
     for (const DxfTag* t = entities[i].begin + 1; t != entities[i].end; ++t) {
       double v = 0.0;
       if (t->code == 2 || (t->code == 3 && block.name.empty())) block.name = t->value;
-      if (t->code == 70) dxf_number(*t, &flags);
+      if (t->code == 70) dxf_integer(*t, &flags);
       if (t->code >= 10 && t->code <= 30 && t->code % 10 == 0 && dxf_number(*t, &v) && std::abs(v) < 1e12)
         base[(t->code - 10) / 10] = v;
     }
     block.base = base;
-    block.external = (static_cast<int>(flags) & (4 | 8)) != 0;
+    block.external = (flags & (4 | 8)) != 0;
     std::size_t j = i + 1;
     while (j < entities.size() && entities[j].kind() != "ENDBLK" && entities[j].kind() != "BLOCK") ++j;
     read_entities(

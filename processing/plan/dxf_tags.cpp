@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 #include "model/error.h"
 
@@ -34,6 +35,16 @@ bool dxf_number(const DxfTag& tag, double* value) {
   while (*end == ' ' || *end == '\t' || *end == '\r') ++end;
   if (*end != '\0' || !std::isfinite(v)) return false;
   *value = v;
+  return true;
+}
+
+bool dxf_integer(const DxfTag& tag, int* value) {
+  double v = 0.0;
+  // Out of range, the conversion to int would be undefined (found by the DXF fuzzer: 4.6e11 as flags).
+  if (!dxf_number(tag, &v) || v < static_cast<double>(std::numeric_limits<int>::min()) ||
+      v > static_cast<double>(std::numeric_limits<int>::max()))
+    return false;
+  *value = static_cast<int>(v);
   return true;
 }
 

@@ -35,5 +35,8 @@ DxfValueType dxf_value_type(int code);
 
 // The value as a number; false when it is not one (or not finite).
 bool dxf_number(const DxfTag& tag, double* value);
+// The value as an integer (flags, colours, counts); false when it is not a number or out of int range
+// (fractions are cut toward zero, as a hand-edited "70\n1.0" means 1).
+bool dxf_integer(const DxfTag& tag, int* value);
 
 }  // namespace plenopath

@@ -225,6 +225,28 @@ TEST(DxfImport, BadFilesGiveClearErrors) {
   EXPECT_THROW(import_dxf_from_memory("0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n1e308\n", "x.dxf"), Error);
 }
 
+// Integer group codes beyond int (found by the fuzzer under UBSan: block flags 4.6e11): read as absent,
+// never converted out of range.
+TEST(DxfImport, IntegerCodesBeyondIntAreIgnoredNotOverflowed) {
+  const std::string dxf =
+      "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n"
+      "0\nLAYER\n2\nWALLS\n62\n-2147483648\n70\n1e20\n"  // colour INT_MIN: off (negative), 256 at most
+      "0\nENDTAB\n0\nENDSEC\n"
+      "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nB\n70\n461632000000\n10\n0\n20\n0\n"
+      "0\nLINE\n8\nWALLS\n10\n0\n20\n0\n11\n2\n21\n0\n0\nENDBLK\n0\nENDSEC\n"
+      "0\nSECTION\n2\nENTITIES\n0\nINSERT\n8\nWALLS\n2\nB\n10\n1\n20\n1\n"
+      "0\nLINE\n8\nWALLS\n10\n0\n20\n0\n11\n4\n21\n0\n0\nENDSEC\n0\nEOF\n";
+  const FloorPlan plan = import_dxf_from_memory(dxf, "flags.dxf");
+  ASSERT_FALSE(plan.layers.empty());
+  EXPECT_EQ(plan.layers[0].name, "WALLS");
+  EXPECT_EQ(plan.layers[0].color, 256);
+  EXPECT_FALSE(plan.layers[0].visible);
+  // The block's flags are unreadable, so it is not external: its line is inserted next to the plain one.
+  double length = 0.0;
+  for (const PlanSegment& seg : plan.segments) length += seg.length();
+  EXPECT_NEAR(length, 4.0 + 2.0, 1e-9);
+}
+
 // Broken files import what is readable and say what was not (the whole-file guards are gone).
 TEST(DxfImport, BrokenFilesImportWhatIsReadable) {
   DxfImportReport report;
