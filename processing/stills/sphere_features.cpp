@@ -40,7 +40,7 @@ void detect_central_half(const cv::Mat& grey, int shift, int max_features, doubl
     // The descriptor's support (a radius of about 5.3 x the keypoint's size in OpenCV's SIFT) must stay
     // inside the copy, which extends a quarter width beyond the kept half on each side.
     if (k.size > w / 24.0f) continue;
-    const double elevation = M_PI / 2 - (k.pt.y / h) * M_PI;
+    const double elevation = M_PI / 2 - ((k.pt.y + 0.5) / h) * M_PI;  // at the pixel centre
     if (std::abs(elevation) > max_abs_elevation) continue;
     kept.push_back(k);
   }

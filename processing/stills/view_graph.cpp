@@ -114,20 +114,43 @@ std::vector<double> average_headings(int still_count, const std::vector<int>& gr
           stack.push_back(j);
         }
     }
-    // Weighted circular means: each still where its neighbours say it is (Gauss-Seidel).
-    for (int it = 0; it < options.iterations; ++it) {
+    // Each still where its neighbours say it is (Gauss-Seidel): first the weighted circular median of
+    // their predictions (a wrong edge in the tree, or among the neighbours, does not pull), then
+    // Cauchy-weighted circular means for precision.
+    const double cauchy = 0.5 * max_residual;
+    for (int it = 0; it < 2 * options.iterations; ++it) {
+      const bool median_step = it < options.iterations;
       for (int i : group) {
         if (i == group.front()) continue;
-        std::complex<double> sum = 0;
+        std::vector<std::pair<double, double>> predictions;  // (heading, weight)
         for (std::size_t e : order) {
           if (!(*kept)[e]) continue;
           const ViewEdge& v = edges[e];
           if (v.a == i)
-            sum += v.weight * std::polar(1.0, heading[static_cast<std::size_t>(v.b)] - v.turn);
+            predictions.push_back({heading[static_cast<std::size_t>(v.b)] - v.turn, v.weight});
           else if (v.b == i)
-            sum += v.weight * std::polar(1.0, heading[static_cast<std::size_t>(v.a)] + v.turn);
+            predictions.push_back({heading[static_cast<std::size_t>(v.a)] + v.turn, v.weight});
         }
-        if (std::abs(sum) > 0) heading[static_cast<std::size_t>(i)] = std::arg(sum);
+        if (predictions.empty()) continue;
+        double& h = heading[static_cast<std::size_t>(i)];
+        if (median_step) {
+          double best = 1e300;
+          for (const auto& [candidate, unused] : predictions) {
+            double cost = 0;
+            for (const auto& [p, w] : predictions) cost += w * std::abs(wrap_angle(p - candidate));
+            if (cost < best) {
+              best = cost;
+              h = wrap_angle(candidate);
+            }
+          }
+        } else {
+          std::complex<double> sum = 0;
+          for (const auto& [p, w] : predictions) {
+            const double r = wrap_angle(p - h) / cauchy;
+            sum += w / (1.0 + r * r) * std::polar(1.0, p);
+          }
+          if (std::abs(sum) > 0) h = std::arg(sum);
+        }
       }
     }
     // Drop the edges that disagree, then once more from a tree of the rest.

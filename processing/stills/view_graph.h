@@ -2,8 +2,8 @@
 // The view graph of a set of still panoramas (issue 20): one edge per pair whose matches a planar two-view
 // pose verified, then the global steps on it, each on one connected group at a time:
 //   - headings by 1-D rotation averaging on the circle (a maximum spanning tree by inliers to start, then
-//     weighted circular means per still; edges whose turn disagrees with the result are dropped, which can
-//     split a group);
+//     weighted circular medians per still, then Cauchy-weighted circular means; edges whose turn disagrees
+//     with the result are dropped, which can split a group);
 //   - positions from the pairwise directions of travel, in the averaged headings' frame, by linear least
 //     squares: an edge with a metric length (from the floor seen by the pair, see stills_scale.h) is a full
 //     relative position, an edge without one only says which line the other still lies on. Without any
