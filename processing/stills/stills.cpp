@@ -27,6 +27,9 @@ void StillsOptions::check() const {
                  "must be >= two_view.min_inliers", min_pair_inliers);
   require_option(min_direction_parallax_deg >= 0, s + "min_direction_parallax_deg", "must be >= 0",
                  min_direction_parallax_deg);
+  require_option(max_direction_residual_deg > 0, s + "max_direction_residual_deg", "must be > 0",
+                 max_direction_residual_deg);
+  require_option(max_length_residual > 0, s + "max_length_residual", "must be > 0", max_length_residual);
   require_option(camera_height_m > 0, s + "camera_height_m", "must be > 0", camera_height_m);
   require_option(min_floor_points >= 3, s + "min_floor_points", "must be >= 3", min_floor_points);
 }
@@ -225,6 +228,7 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
   // Positions and refinement per group.
   std::vector<int> group_of(static_cast<std::size_t>(count), -1);
   std::vector<GroupSolution> solutions(groups.size());
+  std::vector<std::pair<int, int>> dropped_by_positions;
   const double steep = std::sin(kFloorSteepnessDeg * kDeg);
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const std::vector<int>& group = groups[g];
@@ -236,7 +240,17 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
         average_headings(count, group, kept_edges, options.headings, &kept_here);
     std::vector<Eigen::Vector2d> positions;
     bool scale_known = false;
-    if (!solve_positions(count, group, kept_edges, kept_here, headings, &positions, &scale_known)) continue;
+    if (!solve_positions_robust(count, group, kept_edges, &kept_here, headings,
+                                options.max_direction_residual_deg, options.max_length_residual, &positions,
+                                &scale_known))
+      continue;
+    for (std::size_t e = 0; e < kept_edges.size(); ++e)
+      if (!kept_here[e] && kept_edges[e].a >= 0) {
+        const int a = kept_edges[e].a, b = kept_edges[e].b;
+        if (std::find(group.begin(), group.end(), a) != group.end() &&
+            std::find(group.begin(), group.end(), b) != group.end())
+          dropped_by_positions.push_back({a, b});
+      }
     for (int i : group)
       s.poses[static_cast<std::size_t>(i)] =
           Eigen::Vector3d(positions[static_cast<std::size_t>(i)].x(),
@@ -385,8 +399,11 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
       result.points.push_back(p);
     }
   }
-  for (const PairWork& w : work)
+  for (PairWork& w : work) {
+    for (const auto& [a, b] : dropped_by_positions)
+      if (w.report.a == a && w.report.b == b) w.report.kept = false;
     if (w.report.matches > 0) result.pairs.push_back(w.report);
+  }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   progress.report(1.0, "done");
   return result;

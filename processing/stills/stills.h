@@ -38,6 +38,10 @@ struct StillsOptions {
   // stills are nearly on the same spot); the pair still gives its turn.
   double min_direction_parallax_deg = 2.0;
   HeadingAveragingOptions headings;
+  // Edges that disagree with the solved positions (solve_positions_robust): a direction this far off is
+  // dropped, a length this far off (relative) loses its length.
+  double max_direction_residual_deg = 3.0;
+  double max_length_residual = 0.1;
   StillsRefinementOptions refinement;
   // Height of the tripod's nodal point above the floor, metres: the metric scale. The author gives it (the
   // command line's --camera-height); 1.6 m is a usual tripod for real-estate tours.
@@ -55,7 +59,7 @@ struct StillsPair {
   double length_m = 0.0;  // from the floor seen by the pair, 0 when not measured
   int floor_points = 0;
   bool edge = false;  // verified well enough to be an edge of the view graph
-  bool kept = false;  // an edge that the heading averaging kept
+  bool kept = false;  // an edge that the heading averaging and the positions kept
 };
 
 struct StillsResult {

@@ -253,4 +253,59 @@ bool solve_positions(int still_count, const std::vector<int>& group, const std::
   return true;
 }
 
+bool solve_positions_robust(int still_count, const std::vector<int>& group, std::vector<ViewEdge> edges,
+                            std::vector<bool>* kept, const std::vector<double>& headings,
+                            double max_direction_residual_deg, double max_length_residual,
+                            std::vector<Eigen::Vector2d>* positions, bool* scale_known) {
+  if (!solve_positions(still_count, group, edges, *kept, headings, positions, scale_known)) return false;
+  const double max_angle = max_direction_residual_deg * M_PI / 180.0;
+  std::vector<char> tried(edges.size(), 0);  // removal of this edge left the positions unfixed
+  for (std::size_t round = 0; round < edges.size(); ++round) {
+    // The worst edge by its residual relative to its threshold.
+    double worst = 1.0;
+    int worst_edge = -1;
+    bool worst_is_length = false;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const ViewEdge& v = edges[e];
+      if (!(*kept)[e] || !v.direction_known || tried[e]) continue;
+      const Eigen::Vector2d d =
+          (*positions)[static_cast<std::size_t>(v.b)] - (*positions)[static_cast<std::size_t>(v.a)];
+      if (d.norm() == 0) continue;
+      const double angle = std::abs(
+          wrap_angle(std::atan2(d.y(), d.x()) - headings[static_cast<std::size_t>(v.a)] - v.direction));
+      if (angle / max_angle > worst) {
+        worst = angle / max_angle;
+        worst_edge = static_cast<int>(e);
+        worst_is_length = false;
+      }
+      if (v.length > 0 && *scale_known) {
+        const double r = std::abs(d.norm() / v.length - 1.0) / max_length_residual;
+        if (r > worst) {
+          worst = r;
+          worst_edge = static_cast<int>(e);
+          worst_is_length = true;
+        }
+      }
+    }
+    if (worst_edge < 0) return true;
+    const std::size_t e = static_cast<std::size_t>(worst_edge);
+    const ViewEdge before = edges[e];
+    if (worst_is_length)
+      edges[e].length = 0.0;
+    else
+      (*kept)[e] = false;
+    std::vector<Eigen::Vector2d> trial;
+    bool trial_scale = false;
+    if (solve_positions(still_count, group, edges, *kept, headings, &trial, &trial_scale)) {
+      *positions = trial;
+      *scale_known = trial_scale;
+    } else {
+      edges[e] = before;
+      (*kept)[e] = true;
+      tried[e] = 1;
+    }
+  }
+  return true;
+}
+
 }  // namespace plenopath

@@ -48,4 +48,15 @@ bool solve_positions(int still_count, const std::vector<int>& group, const std::
                      const std::vector<bool>& kept, const std::vector<double>& headings,
                      std::vector<Eigen::Vector2d>* positions, bool* scale_known);
 
+// solve_positions(), then the edges that disagree with the positions are dropped one at a time, worst first,
+// and the positions solved again: a direction more than max_direction_residual_deg off the solved one drops
+// the edge, a length more than max_length_residual (relative) off only drops the length. Wrong directions
+// come with right turns (repeated texture seen from elsewhere matches as a shifted copy), so the heading
+// averaging cannot see them. An edge whose removal would leave the positions unfixed stays. `kept` is
+// updated.
+bool solve_positions_robust(int still_count, const std::vector<int>& group, std::vector<ViewEdge> edges,
+                            std::vector<bool>* kept, const std::vector<double>& headings,
+                            double max_direction_residual_deg, double max_length_residual,
+                            std::vector<Eigen::Vector2d>* positions, bool* scale_known);
+
 }  // namespace plenopath
