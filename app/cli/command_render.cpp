@@ -33,6 +33,8 @@ struct Options {
   double exposure_jump = 0.0, tilt_wobble = 0.0, bumps = 0.0;
   int frames = 0, people = 0, jpeg_quality = 92;
   unsigned seed = 1;
+  int texture_size = SceneOptions{}.texture_size;
+  double texels_per_metre = SceneOptions{}.texels_per_metre;
 };
 
 std::string frame_name(int index, const char* ext) {
@@ -47,6 +49,8 @@ int run(const Options& o) {
   scene_options.wall_height = o.wall_height;
   scene_options.camera_height = o.camera_height;
   scene_options.texture_seed = o.seed;
+  scene_options.texture_size = o.texture_size;
+  scene_options.texels_per_metre = o.texels_per_metre;
   if (o.plain_walls) {
     scene_options.wall_finish = WallFinish::kPlainPaint;
     scene_options.posters = false;
@@ -153,6 +157,13 @@ Command add_render_command(CLI::App& parent) {
   sub->add_flag("--plain-walls", o->plain_walls, "Plain painted walls and pillars, no posters");
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
   sub->add_option("--seed", o->seed, "Texture seed")->capture_default_str();
+  sub->add_option("--texture-size", o->texture_size,
+                  "Texels per side of each procedural texture (a power of two); the textures repeat every "
+                  "texture-size / texels-per-metre metres, which wide-baseline matching of stills can alias")
+      ->capture_default_str();
+  sub->add_option("--texels-per-metre", o->texels_per_metre, "Texture resolution on the surfaces")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_option("--wall-height", o->wall_height, "Wall height, metres")->capture_default_str();
   sub->add_option("--camera-height", o->camera_height, "Camera height, metres")->capture_default_str();
   sub->add_option("--rig", o->rig, "Multi-head rig calibration (JSON): write per-head images");

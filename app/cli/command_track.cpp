@@ -1,10 +1,14 @@
-// `plenopath track --capture DIR|VIDEO [--first N] [--last M] [--stride K] [--camera-height M]
+// `plenopath track --capture DIR|VIDEO | --stills DIR [--first N] [--last M] [--stride K] [--camera-height M]
 // [--plan PLAN.dxf [--layers L ...] [--occluders L ...]] [--anchors ANCHORS.json] [--out PATH.json]
 // [--json]`: the camera path from the panoramas alone (processing/egomotion/egomotion.h); with --plan, each
 // piece then placed on the plan by the tracker's points (processing/registration/registration.h); with
 // --anchors, aligned to the anchors and refined with them as priors (processing/anchors/anchor_refinement.h).
 // With --out, the tracker's points go beside the path file (PATH.points.json, model/path_points.h), in the
 // path's frame, for `plenopath register` later.
+// Still panoramas (issue 20, processing/stills/stills.h): `--stills DIR` solves a folder of tripod stills
+// metres apart by wide-baseline matching instead of tracking; `--capture DIR` switches to that by itself
+// when KLT follows too few corners between neighbouring images (processing/stills/stills_detection.h) and
+// says so on stderr; --no-auto-stills keeps the tracker.
 // Progress goes to stderr. Frame indices (path file, --known-distance, --first/--last) are positions in the
 // whole capture: the natural order of the folder's image files, or the video's frame numbers.
 #include <algorithm>
@@ -30,6 +34,8 @@
 #include "processing/egomotion/egomotion.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/registration/registration.h"
+#include "processing/stills/stills.h"
+#include "processing/stills/stills_detection.h"
 
 namespace plenopath::cli {
 namespace {
@@ -69,11 +75,56 @@ std::vector<int> capture_positions(const FrameSource& source) {
   return positions;
 }
 
+// The stills pipeline's result in the tracker's shape, so that registration, anchors and the summary treat
+// both alike; every still is a keyframe.
+EgomotionResult as_tracker_result(const StillsResult& s) {
+  EgomotionResult r;
+  r.path = s.path;
+  r.tracked_points = s.points;
+  for (int i = 0; i < static_cast<int>(s.path.size()); ++i) r.keyframes.push_back(i);
+  r.points = s.refinement.points;
+  r.observations = s.refinement.observations;
+  r.refinement.final_rms = s.refinement.final_rms_deg * M_PI / 180.0;
+  r.scale_source = s.scale_source;
+  r.scale_factor = s.scale_factor;
+  r.floor_points = s.floor_points;
+  r.flagged_frames = static_cast<int>(s.unconnected.size());
+  r.seconds_geometry = s.seconds;
+  return r;
+}
+
+nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* detection, double camera_height,
+                              bool height_given) {
+  nlohmann::json groups = nlohmann::json::array();
+  for (const std::vector<int>& g : s.groups) groups.push_back(g);
+  int edges = 0, kept = 0;
+  for (const StillsPair& p : s.pairs) {
+    edges += p.edge;
+    kept += p.kept;
+  }
+  nlohmann::json j = {{"stills", s.path.size()},
+                      {"connected", s.path.size() - s.unconnected.size()},
+                      {"unconnected", s.unconnected},
+                      {"groups", groups},
+                      {"pairs_matched", s.pairs.size()},
+                      {"edges", edges},
+                      {"edges_kept", kept},
+                      {"features", s.features},
+                      {"floor_points", s.floor_points},
+                      {"camera_height_m", camera_height},
+                      {"camera_height_given", height_given}};
+  if (detection)
+    j["detection"] = {{"followed_fraction", detection->followed_fraction}, {"reason", detection->reason}};
+  return j;
+}
+
 }  // namespace
 
 Command add_track_command(CLI::App& parent) {
   struct Options {
     std::string capture;
+    std::string stills;  // folder of still panoramas: solved as stills without asking
+    bool no_auto_stills = false;
     double camera_height = 0.0;
     std::string out;
     bool json = false;
@@ -96,9 +147,15 @@ Command add_track_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* sub =
       parent.add_subcommand("track", "Recover the camera path (x, y, heading per frame) from the panoramas");
-  sub->add_option("--capture", options->capture,
-                  "Folder of equirectangular frames (natural sort order) or a video")
-      ->required();
+  CLI::Option* capture_option = sub->add_option(
+      "--capture", options->capture, "Folder of equirectangular frames (natural sort order) or a video");
+  sub->add_option("--stills", options->stills,
+                  "Folder of still panoramas shot from a tripod metres apart (natural sort order): solved by "
+                  "wide-baseline matching, not tracking")
+      ->excludes(capture_option);
+  sub->add_flag("--no-auto-stills", options->no_auto_stills,
+                "Track a folder even when its neighbouring images overlap too little for KLT (by default "
+                "such a folder is solved as stills)");
   sub->add_option("--camera-height", options->camera_height,
                   "Camera height above the floor in metres: gives metric scale (else the scale is relative)")
       ->check(CLI::NonNegativeNumber);
@@ -148,7 +205,11 @@ Command add_track_command(CLI::App& parent) {
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout");
   sub->add_flag("--quiet", options->quiet, "No progress on stderr");
   return {
-      sub, [options]() {
+      sub, [options, sub]() {
+        if (options->capture.empty() && options->stills.empty())
+          throw Error("track needs --capture DIR|VIDEO or --stills DIR");
+        const bool forced_stills = !options->stills.empty();
+        if (forced_stills) options->capture = options->stills;
         if (options->last >= 0 && options->last < options->first)
           throw Error("--last " + std::to_string(options->last) + " is before --first " +
                       std::to_string(options->first));
@@ -158,6 +219,11 @@ Command add_track_command(CLI::App& parent) {
         source_options.stride = options->stride;
         std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
         const int n = source->frame_count();
+        const bool plain_folder = source->kind() == CaptureKind::kImageFolder && source->head_count() == 0;
+        if (forced_stills && !plain_folder)
+          throw Error("--stills " + options->stills +
+                      ": not a folder of panoramas (a video or a rig capture is "
+                      "tracked with --capture)");
         const std::vector<int> positions = capture_positions(*source);
         // Anchors are read and checked before the long tracking run.
         Anchors anchors;
@@ -213,10 +279,48 @@ Command add_track_command(CLI::App& parent) {
             throw Error(std::string("--known-distance: ") + e.what());
           }
         }
-        ConsoleProgress progress("track", options->quiet);
-        EgomotionResult r = EgomotionTracker::run(
-            n, [&](int i) { return source->read(i); }, eo, progress);
-        progress.finish();
+        // Stills or video: forced, or decided by how well KLT follows corners between neighbours.
+        StillsDetection detection;
+        bool as_stills = forced_stills;
+        if (!forced_stills && plain_folder && !options->no_auto_stills) {
+          detection = detect_stills(n, [&](int i) { return source->read(i); });
+          as_stills = detection.stills;
+          if (as_stills && !options->quiet)
+            std::cerr << "track: " << options->capture
+                      << " looks like still panoramas, not video: " << detection.reason
+                      << ". Solving them as stills (--no-auto-stills tracks them anyway)\n";
+        }
+        EgomotionResult r;
+        nlohmann::json stills_summary;
+        if (as_stills) {
+          StillsOptions so;
+          const bool height_given = options->camera_height > 0;
+          if (height_given)
+            so.camera_height_m = options->camera_height;
+          else if (!options->quiet)
+            std::cerr << "track: stills: no --camera-height given, scale from a tripod height of "
+                      << so.camera_height_m << " m\n";
+          so.features.work_width = sub->count("--work-width") ? options->work_width : 2048;
+          if (so.features.work_width % 2) ++so.features.work_width;
+          ConsoleProgress progress("track: stills", options->quiet);
+          const StillsResult s = solve_stills(
+              n, [&](int i) { return source->read(i); }, so, progress);
+          progress.finish();
+          r = as_tracker_result(s);
+          stills_summary =
+              stills_to_json(s, forced_stills ? nullptr : &detection, so.camera_height_m, height_given);
+          if (!options->quiet && !s.unconnected.empty()) {
+            std::cerr << "track: stills: " << s.unconnected.size() << " of " << n
+                      << " stills connect to no other still:";
+            for (int i : s.unconnected) std::cerr << " " << source->frame_name(i);
+            std::cerr << "\n";
+          }
+        } else {
+          ConsoleProgress progress("track", options->quiet);
+          r = EgomotionTracker::run(
+              n, [&](int i) { return source->read(i); }, eo, progress);
+          progress.finish();
+        }
         renumber_frames(&r.path, positions);
         if (source->kind() == CaptureKind::kImageFolder)
           for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
@@ -294,9 +398,15 @@ Command add_track_command(CLI::App& parent) {
                                   {"anchor_residuals", residuals},
                                   {"out", options->out}};
         if (!registration.is_null()) summary["registration"] = registration;
+        summary["mode"] = as_stills ? "stills" : "video";
+        if (!stills_summary.is_null()) summary["stills"] = stills_summary;
         if (options->json) {
           std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         } else {
+          if (as_stills)
+            std::cout << "Solved " << r.path.size()
+                      << " stills as stills: " << stills_summary["connected"].get<int>() << " connected, "
+                      << stills_summary["unconnected"].size() << " unconnected\n";
           std::cout << "Tracked " << r.path.size() << " frames (" << r.keyframes.size() << " keyframes, "
                     << r.points << " points), path length " << std::fixed << std::setprecision(2)
                     << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
