@@ -153,6 +153,11 @@ Command add_track_command(CLI::App& parent) {
                   "Folder of still panoramas shot from a tripod metres apart (natural sort order): solved by "
                   "wide-baseline matching, not tracking")
       ->excludes(capture_option);
+  // One of the two is needed: a usage error (exit 2) when neither is given.
+  sub->parse_complete_callback([options]() {
+    if (options->capture.empty() && options->stills.empty())
+      throw CLI::RequiredError("--capture or --stills");
+  });
   sub->add_flag("--no-auto-stills", options->no_auto_stills,
                 "Track a folder even when its neighbouring images overlap too little for KLT (by default "
                 "such a folder is solved as stills)");
@@ -206,8 +211,6 @@ Command add_track_command(CLI::App& parent) {
   sub->add_flag("--quiet", options->quiet, "No progress on stderr");
   return {
       sub, [options, sub]() {
-        if (options->capture.empty() && options->stills.empty())
-          throw Error("track needs --capture DIR|VIDEO or --stills DIR");
         const bool forced_stills = !options->stills.empty();
         if (forced_stills) options->capture = options->stills;
         if (options->last >= 0 && options->last < options->first)

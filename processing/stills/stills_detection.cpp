@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+#include <string>
 #include <vector>
 
 #include "model/option_check.h"
@@ -14,6 +15,7 @@ namespace plenopath {
 
 void StillsDetectionOptions::check() const {
   const std::string s = "StillsDetectionOptions.";
+  require_option(min_frames >= 2, s + "min_frames", "must be >= 2", min_frames);
   require_option(sample_pairs >= 1, s + "sample_pairs", "must be >= 1", sample_pairs);
   require_option(work_width >= 64, s + "work_width", "must be >= 64", work_width);
   require_option(corners >= 10, s + "corners", "must be >= 10", corners);
@@ -51,10 +53,8 @@ StillsDetection detect_stills(int count, const std::function<cv::Mat(int)>& read
                               const StillsDetectionOptions& options) {
   options.check();
   StillsDetection out;
-  if (count < 2) {
-    out.stills = true;
-    out.followed_fraction = 0.0;
-    out.reason = "a single panorama";
+  if (count < options.min_frames) {
+    out.reason = "too few frames (" + std::to_string(count) + ") to tell stills from video";
     return out;
   }
   const int pairs = std::min(options.sample_pairs, count - 1);

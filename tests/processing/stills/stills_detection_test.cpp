@@ -51,6 +51,10 @@ TEST(StillsDetection, AWalkIsVideoAndTripodStillsAreStills) {
   EXPECT_TRUE(s.stills) << s.reason;
   EXPECT_LT(s.followed_fraction, 0.2) << s.reason;
   EXPECT_EQ(s.pairs, 4);
+  // Four stills are too few to judge.
+  const StillsDetection few = detect_stills(4, [&](int i) { return stills[static_cast<std::size_t>(i)]; });
+  EXPECT_FALSE(few.stills);
+  EXPECT_EQ(few.pairs, 0);
 }
 
 TEST(StillsDetection, BadOptionsAreNamed) {
