@@ -98,9 +98,22 @@ nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* dete
   nlohmann::json groups = nlohmann::json::array();
   for (const std::vector<int>& g : s.groups) groups.push_back(g);
   int edges = 0, kept = 0;
+  nlohmann::json pairs = nlohmann::json::array();
   for (const StillsPair& p : s.pairs) {
     edges += p.edge;
     kept += p.kept;
+    if (p.inliers > 0)
+      pairs.push_back({{"a", p.a},
+                       {"b", p.b},
+                       {"matches", p.matches},
+                       {"inliers", p.inliers},
+                       {"turn_deg", p.turn_deg},
+                       {"direction_deg", p.direction_deg},
+                       {"median_parallax_deg", p.median_parallax_deg},
+                       {"floor_length_m", p.length_m},
+                       {"coverage_deg", p.coverage_deg},
+                       {"edge", p.edge},
+                       {"kept", p.kept}});
   }
   nlohmann::json j = {{"stills", s.path.size()},
                       {"connected", s.path.size() - s.unconnected.size()},
@@ -109,6 +122,7 @@ nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* dete
                       {"pairs_matched", s.pairs.size()},
                       {"edges", edges},
                       {"edges_kept", kept},
+                      {"verified_pairs", pairs},
                       {"features", s.features},
                       {"floor_points", s.floor_points},
                       {"camera_height_m", camera_height},

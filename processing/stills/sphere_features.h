@@ -17,7 +17,7 @@ struct SphereFeatureOptions {
   int work_width = 2048;                // the panorama is resized to this width (height = width / 2) first
   int max_features = 6000;              // per panorama (split between the two copies), strongest first
   double max_abs_elevation_deg = 60.0;  // features farther from the horizon are dropped (poles, tripod)
-  double contrast_threshold = 0.02;     // SIFT's, lower than its default 0.04: plain walls give little
+  double contrast_threshold = 0.008;    // SIFT's, lower than its default 0.04: plain walls give little
   void check() const;                   // throws Error naming the bad field
 };
 

@@ -11,6 +11,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/stills/edge_lengths.h"
 #include "processing/stills/floor_scale.h"
 #include "processing/util/parallel_for.h"
 
@@ -25,6 +26,8 @@ void StillsOptions::check() const {
   require_option(match_ratio > 0 && match_ratio <= 1, s + "match_ratio", "must be in (0, 1]", match_ratio);
   require_option(min_pair_inliers >= two_view.min_inliers, s + "min_pair_inliers",
                  "must be >= two_view.min_inliers", min_pair_inliers);
+  require_option(min_pair_coverage_deg >= 0 && min_pair_coverage_deg <= 360, s + "min_pair_coverage_deg",
+                 "must be in [0, 360]", min_pair_coverage_deg);
   require_option(min_direction_parallax_deg >= 0, s + "min_direction_parallax_deg", "must be >= 0",
                  min_direction_parallax_deg);
   require_option(max_direction_residual_deg > 0, s + "max_direction_residual_deg", "must be > 0",
@@ -127,6 +130,7 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
   struct PairWork {
     StillsPair report;
     std::vector<std::pair<int, int>> inlier_features;
+    std::vector<double> depth_a, depth_b;  // unit-baseline depths of the inliers (edge_lengths.h)
   };
   std::vector<std::pair<int, int>> pair_list;
   for (int a = 0; a < count; ++a)
@@ -164,7 +168,22 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
         w.report.direction_deg = e.motion.direction / kDeg;
         w.report.rms_error_deg = e.rms_error_deg;
         w.report.median_parallax_deg = e.median_parallax_deg;
-        w.report.edge = e.inliers >= options.min_pair_inliers;
+
+        // How much of the horizon the verified matches cover, in each view (36 bins of 10 deg).
+        std::vector<char> bins_a(36, 0), bins_b(36, 0);
+        for (std::size_t k = 0; k < matches.size(); ++k) {
+          if (!e.inlier[k]) continue;
+          auto bin = [](const Eigen::Vector3d& v) {
+            const double azimuth = std::atan2(-v.y(), v.x());
+            return std::clamp(static_cast<int>((azimuth + M_PI) / (2 * M_PI) * 36), 0, 35);
+          };
+          bins_a[static_cast<std::size_t>(bin(ba_bearings[k]))] = 1;
+          bins_b[static_cast<std::size_t>(bin(bb_bearings[k]))] = 1;
+        }
+        w.report.coverage_deg = 10.0 * std::min(std::count(bins_a.begin(), bins_a.end(), 1),
+                                                std::count(bins_b.begin(), bins_b.end(), 1));
+        w.report.edge =
+            e.inliers >= options.min_pair_inliers && w.report.coverage_deg >= options.min_pair_coverage_deg;
         std::vector<Eigen::Vector3d> ia, ib;
         for (std::size_t k = 0; k < matches.size(); ++k)
           if (e.inlier[k]) {
@@ -172,6 +191,8 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
             ia.push_back(ba_bearings[k]);
             ib.push_back(bb_bearings[k]);
           }
+        if (w.report.edge && e.median_parallax_deg >= options.min_direction_parallax_deg)
+          triangulate_unit_baseline(ia, ib, e.motion.turn, e.motion.direction, 2.0, &w.depth_a, &w.depth_b);
         if (w.report.edge && e.median_parallax_deg >= options.min_direction_parallax_deg)
           w.report.length_m =
               baseline_from_floor(ia, ib, e.motion.turn, e.motion.direction, options.camera_height_m,
@@ -217,10 +238,12 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
   }
   std::vector<ViewEdge> kept_edges;
   std::vector<PairMatches> kept_matches;
+  std::vector<std::size_t> kept_work;  // kept edge -> work index
   for (std::size_t e = 0; e < edges.size(); ++e) {
     work[edge_pair[e]].report.kept = kept[e];
     if (!kept[e]) continue;
     kept_edges.push_back(edges[e]);
+    kept_work.push_back(edge_pair[e]);
     kept_matches.push_back(pair_matches[e]);
   }
   std::vector<std::vector<int>> groups = connected_groups(count, kept_edges);
@@ -229,6 +252,7 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
   std::vector<int> group_of(static_cast<std::size_t>(count), -1);
   std::vector<GroupSolution> solutions(groups.size());
   std::vector<std::pair<int, int>> dropped_by_positions;
+  bool any_refined = false;
   const double steep = std::sin(kFloorSteepnessDeg * kDeg);
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const std::vector<int>& group = groups[g];
@@ -238,12 +262,34 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
     std::vector<bool> kept_here;
     const std::vector<double> headings =
         average_headings(count, group, kept_edges, options.headings, &kept_here);
+    // Lengths: the floor's, and the ratios of edges that triangulate the same features (edge_lengths.h).
+    std::vector<ViewEdge> group_edges = kept_edges;
+    std::vector<EdgeDepths> edge_depths;
+    std::vector<std::size_t> depth_edge;
+    for (std::size_t e = 0; e < kept_edges.size(); ++e) {
+      group_edges[e].length = 0.0;
+      if (!kept_here[e] || !kept_edges[e].direction_known) continue;
+      const PairWork& w = work[kept_work[e]];
+      EdgeDepths d;
+      d.a = kept_edges[e].a;
+      d.b = kept_edges[e].b;
+      d.features = w.inlier_features;
+      d.depth_a = w.depth_a;
+      d.depth_b = w.depth_b;
+      d.metric_length = w.report.length_m;
+      d.metric_weight = w.report.floor_points;
+      edge_depths.push_back(std::move(d));
+      depth_edge.push_back(e);
+    }
+    const EdgeLengths lengths = solve_edge_lengths(count, edge_depths);
+    for (std::size_t k = 0; k < depth_edge.size(); ++k) group_edges[depth_edge[k]].length = lengths.length[k];
     std::vector<Eigen::Vector2d> positions;
     bool scale_known = false;
-    if (!solve_positions_robust(count, group, kept_edges, &kept_here, headings,
+    if (!solve_positions_robust(count, group, group_edges, &kept_here, headings,
                                 options.max_direction_residual_deg, options.max_length_residual, &positions,
                                 &scale_known))
       continue;
+    scale_known = scale_known && lengths.metric;
     for (std::size_t e = 0; e < kept_edges.size(); ++e)
       if (!kept_here[e] && kept_edges[e].a >= 0) {
         const int a = kept_edges[e].a, b = kept_edges[e].b;
@@ -270,7 +316,8 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
     result.refinement.observations += report.observations;
     result.refinement.dropped_observations += report.dropped_observations;
     result.refinement.iterations += report.iterations;
-    if (g == 0) {
+    if (!any_refined) {  // the largest solved group's figures
+      any_refined = true;
       result.refinement.initial_rms_deg = report.initial_rms_deg;
       result.refinement.final_rms_deg = report.final_rms_deg;
     }
@@ -316,7 +363,9 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
   result.groups = final_groups;
 
   // 5. The path in pieces: runs of consecutive stills of one group.
-  const int largest = solutions.empty() || !solutions[0].solved ? -1 : 0;
+  int largest = -1;  // the largest solved group (groups are sorted by size)
+  for (std::size_t g = 0; g < solutions.size() && largest < 0; ++g)
+    if (solutions[g].solved) largest = static_cast<int>(g);
   auto group_index = [&](int still) { return group_of[static_cast<std::size_t>(still)]; };
   std::vector<int> piece_of(static_cast<std::size_t>(count), 0);
   std::vector<Eigen::Vector3d> piece_origin;
@@ -369,9 +418,10 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
     result.path.pieces.clear();  // one placed piece: the plain path
   }
   if (largest >= 0) {
-    result.scale_source = solutions[0].scale_source;
-    result.scale_factor = solutions[0].scale_factor;
-    result.floor_points = solutions[0].floor_points;
+    const GroupSolution& placed = solutions[static_cast<std::size_t>(largest)];
+    result.scale_source = placed.scale_source;
+    result.scale_factor = placed.scale_factor;
+    result.floor_points = placed.floor_points;
   } else {
     result.scale_source = "none";
   }

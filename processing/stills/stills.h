@@ -34,6 +34,12 @@ struct StillsOptions {
   double match_ratio = 0.8;  // Lowe's ratio test on RootSIFT distances
   PlanarRansacOptions two_view;
   int min_pair_inliers = 40;  // verified matches that make a pair an edge of the view graph
+  // ... and the azimuth they must cover in both views (36 bins of 10 deg). Identical furniture in two rooms
+  // (the same desk model) matches as a copy displaced by the distance between the copies, consistently
+  // enough to pass the two-view check, but over the copy's small part of the view; two stills that truly
+  // see the same room share much more of the horizon. 120 deg was chosen on the POV-Ray stills scene
+  // (wrong edges there covered 40-130 deg, right ones 70-230 deg): a trade, not a proof.
+  double min_pair_coverage_deg = 120.0;
   // Below this median parallax of its verified matches a pair's direction of travel is not trusted (the
   // stills are nearly on the same spot); the pair still gives its turn.
   double min_direction_parallax_deg = 2.0;
@@ -58,8 +64,9 @@ struct StillsPair {
   double turn_deg = 0.0, direction_deg = 0.0, rms_error_deg = 0.0, median_parallax_deg = 0.0;
   double length_m = 0.0;  // from the floor seen by the pair, 0 when not measured
   int floor_points = 0;
-  bool edge = false;  // verified well enough to be an edge of the view graph
-  bool kept = false;  // an edge that the heading averaging and the positions kept
+  double coverage_deg = 0.0;  // azimuth the verified matches cover (10 deg bins occupied, the lesser view)
+  bool edge = false;          // verified well enough to be an edge of the view graph
+  bool kept = false;          // an edge that the heading averaging and the positions kept
 };
 
 struct StillsResult {
