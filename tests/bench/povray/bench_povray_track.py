@@ -169,7 +169,8 @@ def bench_scene(scene, args):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--scenes", default=",".join(corpus.SCENES))
+    # Stills scenes have their own benchmark (bench_povray_stills.py).
+    ap.add_argument("--scenes", default=",".join(s for s in corpus.SCENES if "stills" not in corpus.SCENES[s]))
     ap.add_argument("--plenopath", default=os.path.join(HERE, "..", "..", "..", "build", "app", "plenopath"))
     ap.add_argument("--results", default=os.path.join(corpus.cache_root(), "results"))
     ap.add_argument("--no-render", action="store_true")

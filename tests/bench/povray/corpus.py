@@ -47,7 +47,10 @@ WIDTH, HEIGHT = 1024, 512
 #   shake          amplitude (deg) of pitch and roll (trolley on an uneven floor)
 #   dt             seconds between frames (for the people walking)
 # Nuisances (post-processing of each frame): exposure drift amplitude, exposure jumps [(first, last, gain)],
+# exposure per still (gain exp(u * amplitude), u uniform in [-1, 1] per frame: auto-exposure shot to shot),
 # Gaussian noise (ImageMagick -attenuate), JPEG quality (None: PNG).
+# Stills scenes (issue 20) have "stills" instead of a walk: tripod positions in capture order, each with a
+# random heading (seeded), and their own "size" (default 1024x512).
 SCENES = {
     "office": {
         "pov": "office.pov",
@@ -86,6 +89,22 @@ SCENES = {
             "heading_wobble": 1.5, "shake": 0.3, "dt": 0.1, "seed": 3,
         },
         "nuisances": {},
+    },
+    "stills": {
+        "pov": "office_stills.pov",
+        "camera_height": 1.6,
+        "size": (2048, 1024),
+        "description": "office floor as 15 tripod stills 1.8-3.7 m apart at random headings: N1, the "
+                       "corridor, N2 through its door, N3 and S3 through theirs; tripod at the nadir, "
+                       "exposure differing from shot to shot (+-20 %), PNG",
+        "stills": {
+            "positions": [(3.8, 9.5), (2.5, 8.2), (2.5, 6.0), (4.5, 6.0), (6.8, 6.0), (9.0, 6.0), (9.0, 8.0),
+                          (7.2, 8.2), (9.0, 9.7), (10.8, 9.6), (11.5, 6.0), (14.0, 6.0), (16.5, 6.0),
+                          (16.5, 3.6), (15.5, 8.8)],
+            "seed": 20,
+        },
+        "walk": {"dt": 1.0, "seed": 20},
+        "nuisances": {"exposure_per_still": 0.2},
     },
     "gap": {
         "pov": "office.pov",
@@ -216,6 +235,17 @@ def generate_walk(walk):
     return frames
 
 
+def generate_stills(stills):
+    """Tripod stills: the positions as given, level, each at a random heading."""
+    rng = random.Random(stills["seed"])
+    return [{"x": x, "y": y, "heading_deg": rng.uniform(-180.0, 180.0), "pitch_deg": 0.0, "roll_deg": 0.0}
+            for x, y in stills["positions"]]
+
+
+def scene_size(spec):
+    return tuple(spec.get("size", (WIDTH, HEIGHT)))
+
+
 def camera_declares(f, height, index, dt):
     """POV-Ray Declare= options for a frame: the camera basis in POV coordinates (see scenes/camera.inc)."""
     th = math.radians(f["heading_deg"])
@@ -251,7 +281,9 @@ _NUM = r"\s*(-?[0-9.]+)\s*"
 
 def plan_elements(pov_file):
     """Walls as rectangles (4 corners) and columns, from Wall(x0,y0,x1,y1,t), Column(x,y,r), SqColumn(x,y,s)."""
-    text = open(os.path.join(SCENES_DIR, pov_file)).read()
+    # The scene and the scenes it includes (office_stills.pov is office.pov plus a tripod); .inc files hold
+    # the macros, not calls.
+    text = "\n".join(open(os.path.join(SCENES_DIR, f)).read() for f in scene_files(pov_file) if f.endswith(".pov"))
     text = re.sub(r"//[^\n]*", "", text)
     walls, columns = [], []
     for m in re.finditer(r"(?<![A-Za-z])Wall\(" + ",".join([_NUM] * 5) + r"\)", text):
@@ -304,7 +336,7 @@ def write_dxf(scene, out):
 
 def truth_for(scene):
     spec = SCENES[scene]
-    frames = generate_walk(spec["walk"])
+    frames = generate_stills(spec["stills"]) if "stills" in spec else generate_walk(spec["walk"])
     ext = "jpg" if spec["nuisances"].get("jpeg_quality") else "png"
     walls, columns = plan_elements(spec["pov"])
     solids = walls + columns
@@ -349,8 +381,9 @@ def scene_files(pov):
 def scene_hash(scene):
     spec = SCENES[scene]
     h = hashlib.sha256()
-    h.update(("version %s %dx%d\n" % (SCRIPT_VERSION, WIDTH, HEIGHT)).encode())
-    h.update(json.dumps({k: spec[k] for k in ("camera_height", "walk", "nuisances")}, sort_keys=True).encode())
+    h.update(("version %s %dx%d\n" % ((SCRIPT_VERSION,) + scene_size(spec))).encode())
+    keys = ("camera_height", "walk", "nuisances") + (("stills",) if "stills" in spec else ())
+    h.update(json.dumps({k: spec[k] for k in keys}, sort_keys=True).encode())
     for f in scene_files(spec["pov"]):
         h.update(f.encode())
         h.update(open(os.path.join(SCENES_DIR, f), "rb").read())
@@ -381,6 +414,8 @@ def exposure_gain(nuis, i, rng_seed):
     if amp:
         f = smooth_noise(random.Random(rng_seed), 0, 2, 150.0)
         g *= math.exp(amp * f(i))
+    if nuis.get("exposure_per_still"):
+        g *= math.exp(nuis["exposure_per_still"] * random.Random(rng_seed * 1000 + i).uniform(-1.0, 1.0))
     for first, last, gain in nuis.get("exposure_jumps", []):
         if first <= i <= last:
             g *= gain
@@ -451,9 +486,11 @@ def ensure(scene, quiet=False):
     frames = truth["frames"]
     missing = [f for f in frames if not os.path.exists(os.path.join(d, f["file"]))]
     if missing:
-        log("%s: rendering %d of %d frames into %s (1024x512, one thread at nice 19: 2-5 CPU-seconds a "
+        w, h = scene_size(spec)
+        per_frame = 3 * w * h // (1024 * 512)
+        log("%s: rendering %d of %d frames into %s (%dx%d, one thread at nice 19: about %d CPU-seconds a "
             "frame, about %d min on an idle core, much longer on a busy machine)" %
-            (scene, len(missing), len(frames), d, max(1, len(missing) * 3 // 60)))
+            (scene, len(missing), len(frames), d, w, h, per_frame, max(1, len(missing) * per_frame // 60)))
     nuis = spec["nuisances"]
     t0 = time.time()
     stats_file = os.path.join(d, "render_seconds.json")
@@ -472,11 +509,11 @@ def ensure(scene, quiet=False):
             t1 = time.time()
             if nuis:
                 raw = os.path.join(d, "raw-%06d.png" % i)
-                render_frame(spec["pov"], raw, declares)
+                render_frame(spec["pov"], raw, declares, *scene_size(spec))
                 postprocess(raw, out, nuis, i, spec["walk"]["seed"])
                 os.remove(raw)
             else:
-                render_frame(spec["pov"], out, declares)
+                render_frame(spec["pov"], out, declares, *scene_size(spec))
             stats[str(i)] = round(time.time() - t1, 2)
         finally:
             os.remove(claim)
@@ -537,7 +574,8 @@ def main(argv):
         s, i, out = argv[2], int(argv[3]), argv[4]
         spec = SCENES[s]
         f = truth_for(s)["frames"][i]
-        render_frame(spec["pov"], out, camera_declares(f, spec["camera_height"], i, spec["walk"]["dt"]))
+        render_frame(spec["pov"], out, camera_declares(f, spec["camera_height"], i, spec["walk"]["dt"]),
+                     *scene_size(spec))
         return 0
     raise SystemExit("unknown command '%s' (see --help)" % cmd)
 
