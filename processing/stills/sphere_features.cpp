@@ -20,6 +20,7 @@ void SphereFeatureOptions::check() const {
   require_option(max_features >= 16, s + "max_features", "must be >= 16", max_features);
   require_option(max_abs_elevation_deg > 0 && max_abs_elevation_deg <= 90, s + "max_abs_elevation_deg",
                  "must be in (0, 90]", max_abs_elevation_deg);
+  require_option(equalize_clip >= 0, s + "equalize_clip", "must be >= 0 (0 = off)", equalize_clip);
   require_option(contrast_threshold > 0, s + "contrast_threshold", "must be > 0", contrast_threshold);
 }
 
@@ -57,6 +58,37 @@ void detect_central_half(const cv::Mat& grey, int shift, int max_features, doubl
   descriptors->push_back(desc);
 }
 
+// SIFT may report one keypoint twice (the same place, size and orientation from neighbouring scales): the
+// copy with the weaker response goes, so that no direction is matched twice.
+void remove_duplicates(std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) {
+  const int n = static_cast<int>(keypoints->size());
+  std::vector<int> order(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return (*keypoints)[static_cast<std::size_t>(a)].pt.x < (*keypoints)[static_cast<std::size_t>(b)].pt.x;
+  });
+  std::vector<char> drop(static_cast<std::size_t>(n), 0);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const cv::KeyPoint& a = (*keypoints)[static_cast<std::size_t>(order[i])];
+    for (std::size_t j = i + 1; j < order.size(); ++j) {
+      const cv::KeyPoint& b = (*keypoints)[static_cast<std::size_t>(order[j])];
+      if (b.pt.x - a.pt.x >= 0.5f) break;
+      const float dangle = std::abs(std::remainder(a.angle - b.angle, 360.0f));
+      if (std::abs(a.pt.y - b.pt.y) < 0.5f && std::abs(a.size - b.size) < 0.01f * a.size && dangle < 1.0f)
+        drop[static_cast<std::size_t>(a.response >= b.response ? order[j] : order[i])] = 1;
+    }
+  }
+  std::vector<cv::KeyPoint> kept;
+  cv::Mat kept_descriptors;
+  for (int i = 0; i < n; ++i) {
+    if (drop[static_cast<std::size_t>(i)]) continue;
+    kept.push_back((*keypoints)[static_cast<std::size_t>(i)]);
+    kept_descriptors.push_back(descriptors->row(i));
+  }
+  *keypoints = std::move(kept);
+  *descriptors = kept_descriptors;
+}
+
 }  // namespace
 
 SphereFeatures detect_sphere_features(const cv::Mat& image, const SphereFeatureOptions& options) {
@@ -69,6 +101,15 @@ SphereFeatures detect_sphere_features(const cv::Mat& image, const SphereFeatureO
   const int w = options.work_width, h = w / 2;
   if (grey.cols != w)
     cv::resize(grey, grey, cv::Size(w, h), 0, 0, grey.cols > w ? cv::INTER_AREA : cv::INTER_LINEAR);
+  // Equalised round the seam: one tile of w / 16 columns wrapped on each side, so that no direction sits at
+  // an image border of the equalisation (a turned camera gets the same values).
+  if (options.equalize_clip > 0) {
+    const int tile = w / 16;
+    cv::Mat padded, equalised;
+    cv::copyMakeBorder(grey, padded, 0, 0, tile, tile, cv::BORDER_WRAP);
+    cv::createCLAHE(options.equalize_clip, cv::Size(18, 8))->apply(padded, equalised);
+    grey = equalised.colRange(tile, tile + w).clone();
+  }
   // The copy rolled by half the width: its column x shows the panorama's column (x + w/2) mod w.
   cv::Mat rolled(grey.size(), grey.type());
   grey.colRange(w / 2, w).copyTo(rolled.colRange(0, w / 2));
@@ -83,6 +124,7 @@ SphereFeatures detect_sphere_features(const cv::Mat& image, const SphereFeatureO
                       &out.descriptors);
   detect_central_half(rolled, w / 2, per_copy, options.contrast_threshold, max_elevation, &out.keypoints,
                       &out.descriptors);
+  remove_duplicates(&out.keypoints, &out.descriptors);
   // RootSIFT: Hellinger kernel on the histograms, which matches better than L2 on raw SIFT.
   for (int r = 0; r < out.descriptors.rows; ++r) {
     cv::Mat row = out.descriptors.row(r);
