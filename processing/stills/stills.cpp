@@ -169,19 +169,24 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
         w.report.rms_error_deg = e.rms_error_deg;
         w.report.median_parallax_deg = e.median_parallax_deg;
 
-        // How much of the horizon the verified matches cover, in each view (36 bins of 10 deg).
-        std::vector<char> bins_a(36, 0), bins_b(36, 0);
+        // How much of the horizon the verified matches cover, in each view: 10 deg bins holding at least 3
+        // of them (a few stray inliers do not widen a match on one piece of furniture).
+        std::vector<int> bins_a(36, 0), bins_b(36, 0);
+        auto bin = [](const Eigen::Vector3d& v) {
+          const double azimuth = std::atan2(-v.y(), v.x());
+          return static_cast<std::size_t>(
+              std::clamp(static_cast<int>((azimuth + M_PI) / (2 * M_PI) * 36), 0, 35));
+        };
         for (std::size_t k = 0; k < matches.size(); ++k) {
           if (!e.inlier[k]) continue;
-          auto bin = [](const Eigen::Vector3d& v) {
-            const double azimuth = std::atan2(-v.y(), v.x());
-            return std::clamp(static_cast<int>((azimuth + M_PI) / (2 * M_PI) * 36), 0, 35);
-          };
-          bins_a[static_cast<std::size_t>(bin(ba_bearings[k]))] = 1;
-          bins_b[static_cast<std::size_t>(bin(bb_bearings[k]))] = 1;
+          ++bins_a[bin(ba_bearings[k])];
+          ++bins_b[bin(bb_bearings[k])];
         }
-        w.report.coverage_deg = 10.0 * std::min(std::count(bins_a.begin(), bins_a.end(), 1),
-                                                std::count(bins_b.begin(), bins_b.end(), 1));
+        auto covered = [](const std::vector<int>& bins) {
+          return 10.0 *
+                 static_cast<double>(std::count_if(bins.begin(), bins.end(), [](int c) { return c >= 3; }));
+        };
+        w.report.coverage_deg = std::min(covered(bins_a), covered(bins_b));
         w.report.edge =
             e.inliers >= options.min_pair_inliers && w.report.coverage_deg >= options.min_pair_coverage_deg;
         std::vector<Eigen::Vector3d> ia, ib;
