@@ -473,8 +473,13 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     result.coarse[i] = gauge(coarse[i], coarse[0]);
   }
   // ... and the refined points with it (the same gauge as the poses, z scaled alike: floor at -h).
+  // Each point tied to the middle of the keyframes that saw it (the plan refinement moves it with that pose).
   std::vector<int> seen_by(problem.points.size(), 0);
-  for (const auto& o : problem.observations) ++seen_by[o.point];
+  std::vector<std::vector<int>> seen_from(problem.points.size());
+  for (const auto& o : problem.observations) {
+    ++seen_by[o.point];
+    seen_from[o.point].push_back(o.pose);
+  }
   result.tracked_points.reserve(problem.points.size());
   for (std::size_t i = 0; i < problem.points.size(); ++i) {
     if (seen_by[i] == 0) continue;
@@ -483,6 +488,9 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     p.position =
         rotate_z(Eigen::Vector3d(q.x() - pose[0].x(), q.y() - pose[0].y(), q.z()), -pose[0].z()) * scale;
     p.observations = seen_by[i];
+    std::vector<int>& from = seen_from[i];
+    std::nth_element(from.begin(), from.begin() + from.size() / 2, from.end());
+    p.frame = frames[keyframes[from[from.size() / 2]]].index;
     result.tracked_points.push_back(p);
   }
   report("resection", 1.0);

@@ -451,6 +451,7 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
       p.position = Eigen::Vector3d(moved.x(), moved.y(), s.bundle.points[q].z());
       p.piece = result.path.pieces.empty() ? 0 : k;
       p.observations = views[q];
+      p.frame = first_view[q];
       result.points.push_back(p);
     }
   }
