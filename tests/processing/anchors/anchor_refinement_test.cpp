@@ -10,6 +10,7 @@
 #include "model/error.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/registration/drifted_walk.h"
 
 namespace plenopath {
 namespace {
@@ -20,24 +21,7 @@ CameraPath truth_walk(std::size_t frames) {
   return walk;
 }
 
-// Integrates the truth's own steps with a slow heading bias and a scale error, as a drifting tracker would.
-CameraPath drifted(const CameraPath& truth, double bias_rad_per_frame, double scale) {
-  CameraPath out = truth;
-  Eigen::Vector2d p = truth.frames.front().position() + Eigen::Vector2d(0.7, -0.4);
-  double extra = 0.1;  // the drifted path also starts slightly turned
-  for (std::size_t i = 0; i < truth.frames.size(); ++i) {
-    if (i > 0) {
-      const Eigen::Vector2d step = truth.frames[i].position() - truth.frames[i - 1].position();
-      extra += bias_rad_per_frame;
-      const double c = std::cos(extra), s = std::sin(extra);
-      p += scale * Eigen::Vector2d(c * step.x() - s * step.y(), s * step.x() + c * step.y());
-    }
-    out.frames[i].x = p.x();
-    out.frames[i].y = p.y();
-    out.frames[i].heading = wrap_angle(truth.frames[i].heading + extra);
-  }
-  return out;
-}
+using test::drifted;  // the walk's steps with a heading bias and a scale error
 
 Anchors anchors_at(const CameraPath& truth, std::vector<std::size_t> positions) {
   Anchors anchors;
