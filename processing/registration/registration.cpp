@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "model/error.h"
@@ -15,54 +16,11 @@ namespace plenopath {
 
 using namespace registration_detail;
 
-void RegistrationOptions::check() const {
-  const std::string s = "RegistrationOptions.";
-  require_option(camera_height_m > 0, s + "camera_height_m", "must be > 0", camera_height_m);
-  require_option(floor_margin_m >= 0, s + "floor_margin_m", "must be >= 0", floor_margin_m);
-  require_option(ceiling_height_m == 0 || ceiling_height_m > camera_height_m, s + "ceiling_height_m",
-                 "must be 0 (estimated) or above camera_height_m", ceiling_height_m);
-  require_option(ceiling_margin_m >= 0, s + "ceiling_margin_m", "must be >= 0", ceiling_margin_m);
-  require_option(min_observations >= 0, s + "min_observations", "must be >= 0", min_observations);
-  require_option(cell_m >= 0.005 && cell_m <= 0.5, s + "cell_m", "must be in [0.005, 0.5]", cell_m);
-  require_option(coarse_cell_m >= cell_m, s + "coarse_cell_m", "must be >= cell_m", coarse_cell_m);
-  require_option(rotation_step_deg > 0 && rotation_step_deg <= 45, s + "rotation_step_deg",
-                 "must be in (0, 45]", rotation_step_deg);
-  require_option(scale_range >= 0 && scale_range < 0.5, s + "scale_range", "must be in [0, 0.5)",
-                 scale_range);
-  require_option(scale_prior_sigma > 0, s + "scale_prior_sigma", "must be > 0", scale_prior_sigma);
-  require_option(inlier_tolerance_m > 0, s + "inlier_tolerance_m", "must be > 0", inlier_tolerance_m);
-  require_option(free_space_weight >= 0, s + "free_space_weight", "must be >= 0", free_space_weight);
-  require_option(refine_candidates >= 1, s + "refine_candidates", "must be >= 1", refine_candidates);
-  require_option(max_candidates >= 1, s + "max_candidates", "must be >= 1", max_candidates);
-  require_option(distinct_rotation_deg >= 0, s + "distinct_rotation_deg", "must be >= 0",
-                 distinct_rotation_deg);
-  require_option(distinct_translation_m >= 0, s + "distinct_translation_m", "must be >= 0",
-                 distinct_translation_m);
-  require_option(icp_iterations >= 0, s + "icp_iterations", "must be >= 0", icp_iterations);
-  require_option(huber_m > 0, s + "huber_m", "must be > 0", huber_m);
-  require_option(min_score >= 0 && min_score <= 1, s + "min_score", "must be in [0, 1]", min_score);
-  require_option(min_wall_points >= 3, s + "min_wall_points", "must be >= 3", min_wall_points);
-}
-
-double PieceRegistration::ambiguity_ratio() const {
-  if (candidates.size() < 2 || candidates[1].score <= 0) return std::numeric_limits<double>::infinity();
-  return candidates[0].score / candidates[1].score;
-}
-
-bool RegistrationResult::all_ok() const {
-  for (const PieceRegistration& p : pieces)
-    if (!p.ok) return false;
-  return !pieces.empty();
-}
-
-namespace {
-
-int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
-
 // The ceiling above the floor: the densest 10 cm band of the points above the camera, when it stands out
 // (ceiling points crowd at one height, wall points spread: three times the median band); otherwise camera
 // height + 1 m.
-double estimate_ceiling(const std::vector<const PathPoint*>& points, const RegistrationOptions& options) {
+double registration_detail::estimate_ceiling(const std::vector<const PathPoint*>& points,
+                                             const RegistrationOptions& options) {
   if (options.ceiling_height_m > 0) return options.ceiling_height_m;
   const double fallback = options.camera_height_m + 1.0;
   std::map<int, int> bins;
@@ -97,6 +55,59 @@ double estimate_ceiling(const std::vector<const PathPoint*>& points, const Regis
   return options.camera_height_m + sum / n;
 }
 
+bool registration_detail::in_wall_band(const PathPoint& p, const RegistrationOptions& options,
+                                       double ceiling_m) {
+  const double z = p.position.z();
+  return p.observations >= options.min_observations &&
+         z > -options.camera_height_m + options.floor_margin_m &&
+         z < ceiling_m - options.camera_height_m - options.ceiling_margin_m;
+}
+
+void RegistrationOptions::check() const {
+  const std::string s = "RegistrationOptions.";
+  require_option(camera_height_m > 0, s + "camera_height_m", "must be > 0", camera_height_m);
+  require_option(floor_margin_m >= 0, s + "floor_margin_m", "must be >= 0", floor_margin_m);
+  require_option(ceiling_height_m == 0 || ceiling_height_m > camera_height_m, s + "ceiling_height_m",
+                 "must be 0 (estimated) or above camera_height_m", ceiling_height_m);
+  require_option(ceiling_margin_m >= 0, s + "ceiling_margin_m", "must be >= 0", ceiling_margin_m);
+  require_option(min_observations >= 0, s + "min_observations", "must be >= 0", min_observations);
+  require_option(cell_m >= 0.005 && cell_m <= 0.5, s + "cell_m", "must be in [0.005, 0.5]", cell_m);
+  require_option(coarse_cell_m >= cell_m, s + "coarse_cell_m", "must be >= cell_m", coarse_cell_m);
+  require_option(rotation_step_deg > 0 && rotation_step_deg <= 45, s + "rotation_step_deg",
+                 "must be in (0, 45]", rotation_step_deg);
+  require_option(scale_range >= 0 && scale_range < 0.5, s + "scale_range", "must be in [0, 0.5)",
+                 scale_range);
+  require_option(scale_prior_sigma > 0, s + "scale_prior_sigma", "must be > 0", scale_prior_sigma);
+  require_option(inlier_tolerance_m > 0, s + "inlier_tolerance_m", "must be > 0", inlier_tolerance_m);
+  require_option(free_space_weight >= 0, s + "free_space_weight", "must be >= 0", free_space_weight);
+  require_option(refine_candidates >= 1, s + "refine_candidates", "must be >= 1", refine_candidates);
+  require_option(max_candidates >= 1, s + "max_candidates", "must be >= 1", max_candidates);
+  require_option(distinct_rotation_deg >= 0, s + "distinct_rotation_deg", "must be >= 0",
+                 distinct_rotation_deg);
+  require_option(distinct_translation_m >= 0, s + "distinct_translation_m", "must be >= 0",
+                 distinct_translation_m);
+  require_option(icp_iterations >= 0, s + "icp_iterations", "must be >= 0", icp_iterations);
+  require_option(huber_m > 0, s + "huber_m", "must be > 0", huber_m);
+  require_option(min_score >= 0 && min_score <= 1, s + "min_score", "must be in [0, 1]", min_score);
+  require_option(window_length_m >= 0, s + "window_length_m", "must be >= 0", window_length_m);
+  require_option(min_wall_points >= 3, s + "min_wall_points", "must be >= 3", min_wall_points);
+}
+
+double PieceRegistration::ambiguity_ratio() const {
+  if (candidates.size() < 2 || candidates[1].score <= 0) return std::numeric_limits<double>::infinity();
+  return candidates[0].score / candidates[1].score;
+}
+
+bool RegistrationResult::all_ok() const {
+  for (const PieceRegistration& p : pieces)
+    if (!p.ok) return false;
+  return !pieces.empty();
+}
+
+namespace {
+
+int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
+
 PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& frames,
                                  const std::vector<const PathPoint*>& points, const PlanRaster& plan,
                                  const CoarseRaster& coarse, const SegmentGrid& grid,
@@ -109,8 +120,7 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
   const double z_max = out.ceiling_m - options.camera_height_m - options.ceiling_margin_m;
   std::vector<Eigen::Vector2d> wall;
   for (const PathPoint* p : points)
-    if (p->observations >= options.min_observations && p->position.z() > z_min && p->position.z() < z_max)
-      wall.push_back(p->position.head<2>());
+    if (in_wall_band(*p, options, out.ceiling_m)) wall.push_back(p->position.head<2>());
   out.wall_points = static_cast<int>(wall.size());
   if (out.wall_points < options.min_wall_points) {
     out.message = "too few wall points to register: " + std::to_string(out.wall_points) + " (of " +
@@ -219,9 +229,42 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
       result.pieces.push_back(std::move(r));
       continue;
     }
-    result.pieces.push_back(register_piece(k, frames[static_cast<std::size_t>(k)],
-                                           by_piece[static_cast<std::size_t>(k)], raster, coarse, grid, dirs,
-                                           options, sub));
+    SubProgress whole(sub, 0.0, 0.5);
+    PieceRegistration r =
+        register_piece(k, frames[static_cast<std::size_t>(k)], by_piece[static_cast<std::size_t>(k)], raster,
+                       coarse, grid, dirs, options, whole);
+    // A long piece that fits no similarity may have drifted (a heading bias bends it, passes over the same
+    // wall smear apart): its first stretch, less bent, is placed instead, and the plan refinement
+    // (plan_refinement.h) straightens the rest.
+    if (!r.ok && options.window_length_m > 0) {
+      std::vector<Eigen::Vector2d> window_frames;
+      std::set<int> window_indices;
+      double length = 0;
+      const PathFrame* previous = nullptr;
+      for (const PathFrame& f : path.frames) {
+        if (f.piece != k && piece_count > 1) continue;
+        if (previous) length += (f.position() - previous->position()).norm();
+        previous = &f;
+        if (length > options.window_length_m) break;
+        window_frames.push_back(f.position());
+        window_indices.insert(f.index);
+      }
+      std::vector<const PathPoint*> window_points;
+      for (const PathPoint* p : by_piece[static_cast<std::size_t>(k)])
+        if (p->frame >= 0 && window_indices.count(p->frame)) window_points.push_back(p);
+      if (length > options.window_length_m && window_points.size() >= 100) {
+        SubProgress part(sub, 0.5, 1.0, "first stretch");
+        PieceRegistration w =
+            register_piece(k, window_frames, window_points, raster, coarse, grid, dirs, options, part);
+        if (w.ok) {
+          w.by_window = true;
+          w.message = "the whole piece fits no single placement (drift?): placed by its first " +
+                      std::to_string(static_cast<int>(options.window_length_m)) + " m";
+          r = std::move(w);
+        }
+      }
+    }
+    result.pieces.push_back(std::move(r));
   }
   progress.report(1.0);
   result.seconds = seconds_since(t0);
@@ -292,6 +335,7 @@ std::string describe(const PieceRegistration& piece) {
     o.precision(2);
     o << "; next candidate scores " << piece.candidates[1].score / std::max(1e-12, c.score) << " of it";
   }
+  if (piece.by_window) o << "; " << piece.message;
   return o.str();
 }
 

@@ -61,7 +61,10 @@ struct RegistrationOptions {
   // Below this score (best candidate) no placement fits: register_on_plan reports the piece as failed.
   double min_score = 0.35;
   int min_wall_points = 30;  // fewer wall points in a piece: it cannot be registered
-  void check() const;        // throws Error naming the bad field
+  // A piece longer than this that fits no placement as a whole is placed by its first this many metres
+  // (points tied to those frames): drift bends a long path; the plan refinement straightens it. 0 = never.
+  double window_length_m = 25.0;
+  void check() const;  // throws Error naming the bad field
 };
 
 struct RegistrationCandidate {
@@ -78,7 +81,8 @@ struct PieceRegistration {
   double ceiling_m = 0.0;                         // ceiling height used (above the floor)
   std::vector<RegistrationCandidate> candidates;  // best first
   bool ok = false;                                // the best candidate fits (score >= min_score)
-  std::string message;                            // why not, for the author ("no placement fits: ...")
+  bool by_window = false;  // placed by its first window_length_m (the whole did not fit: message says so)
+  std::string message;     // why not, for the author ("no placement fits: ...")
   // Best score over second best (infinity with one candidate): near 1 means ambiguous.
   double ambiguity_ratio() const;
 };

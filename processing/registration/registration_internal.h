@@ -27,6 +27,14 @@ struct PlanRaster {
   bool is_free(const Eigen::Vector2d& p) const;
 };
 
+// The ceiling above the floor (metres): options.ceiling_height_m, or estimated from the points (the densest
+// 10 cm band above the camera when it stands out), or camera height + 1 m.
+double estimate_ceiling(const std::vector<const PathPoint*>& points, const RegistrationOptions& options);
+
+// A wall point: measured by min_observations keyframes or more, between floor + floor_margin_m and
+// ceiling - ceiling_margin_m (heights from the camera: the floor at -camera_height_m).
+bool in_wall_band(const PathPoint& p, const RegistrationOptions& options, double ceiling_m);
+
 // Throws Error when the plan has no occluder segments. `margin` metres of outside around the walls.
 PlanRaster build_plan_raster(const FloorPlan& plan, double cell, double margin);
 
@@ -69,5 +77,41 @@ RegistrationCandidate score_placement(const std::vector<Eigen::Vector2d>& wall_p
                                       const std::vector<Eigen::Vector2d>& frames, const PlanRaster& plan,
                                       const SegmentGrid& grid, const Similarity2& transform,
                                       const RegistrationOptions& options);
+
+// Plan refinement (plan_refinement.cpp, drift_fit.cpp). The wall a point `q` seen from `camera` is on: the
+// first wall the ray from the camera meets on its way to q (and `within` beyond), when q lies within
+// `within` of its line; a point on it and its unit normal.
+bool wall_of(const Eigen::Vector2d& q, const Eigen::Vector2d& camera, const SegmentGrid& grid, double within,
+             Eigen::Vector2d* on_wall, Eigen::Vector2d* normal);
+
+// A wall point tied to a frame of the piece: its offset in that frame's axes, as placed by registration.
+struct DriftTie {
+  std::size_t point = 0;  // index into the caller's points
+  std::size_t pose = 0;   // index into the piece's frames
+  Eigen::Vector2d local = Eigen::Vector2d::Zero();
+};
+
+// The drift model of a stiff path: every step scaled by `scale` and turned by `turn - k * bias` (k: the
+// step's first frame), headings likewise; the first frame shifted by `shift`. The same model as the pose
+// graph's steps with their drift block (processing/anchors/pose_graph_costs.h) at zero step residual.
+struct DriftModel {
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+  double turn = 0.0, scale = 1.0, bias = 0.0;
+};
+// Poses (x, y, heading) of `start` under the model.
+std::vector<Eigen::Vector3d> apply_drift_model(const std::vector<Eigen::Vector3d>& start,
+                                               const DriftModel& m);
+
+struct DriftFitOptions {
+  std::vector<double> within_m = {0.5, 0.3, 0.2, 0.12};  // association distance per round
+  double loss_fraction = 0.3, min_loss_m = 0.03;         // Cauchy scale: max(min, fraction * within)
+  double wall_sigma_m = 0.03;
+  double shift_sigma_m = 1.0, turn_sigma_rad = 0.2, scale_sigma = 0.2, bias_sigma_rad = 0.01;  // priors
+  int iterations = 10;  // Gauss-Newton steps per round
+};
+// The model that puts `ties` (poses: indices into `start`) on the plan's walls. Progress per iteration;
+// a cancel ends it with Cancelled.
+DriftModel fit_drift_model(const std::vector<Eigen::Vector3d>& start, const std::vector<DriftTie>& ties,
+                           const SegmentGrid& grid, const DriftFitOptions& options, Progress& progress);
 
 }  // namespace plenopath::registration_detail
