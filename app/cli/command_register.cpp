@@ -1,6 +1,7 @@
 // `plenopath register --project P.plenopath [--points P.points.json] [--camera-height M] [--pick K ...]
-// [--out OUT.plenopath] [--json] [--quiet]`: places the project's path on its plan by the tracker's points
-// (processing/registration/registration.h), each piece on its own, and saves the project (atomically,
+// [--out OUT.plenopath] [--no-refine] [--json] [--quiet]`: places the project's path on its plan by the
+// tracker's points (processing/registration/registration.h), each piece on its own, refines it on the walls
+// (plan_refinement.h) unless --no-refine, and saves the project (atomically,
 // keeping FILE.bak) with the points sidecar moved alike. No piece is written unless every piece fits.
 #include <filesystem>
 #include <iostream>
@@ -21,7 +22,7 @@ Command add_register_command(CLI::App& parent) {
     std::string project, points, out;
     double camera_height = 0.0;
     std::vector<int> pick;
-    bool json = false, quiet = false;
+    bool json = false, quiet = false, no_refine = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = parent.add_subcommand("register", "Place the project's path on its plan by itself");
@@ -36,6 +37,9 @@ Command add_register_command(CLI::App& parent) {
                   "Candidate to apply per piece (1 = best; one number per piece), e.g. for a symmetric plan")
       ->check(CLI::PositiveNumber);
   sub->add_option("--out", o->out, "Write the placed project here (default: in place, keeping .bak)");
+  sub->add_flag("--no-refine", o->no_refine,
+                "Place each piece by one similarity only (default: then refine the path on the walls, which "
+                "takes out drift)");
   sub->add_flag("--json", o->json, "Machine-readable summary on stdout");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {sub, [o]() {
@@ -68,8 +72,18 @@ Command add_register_command(CLI::App& parent) {
             summary["points_count"] = points.size();
             const std::string out = o->out.empty() ? o->project : o->out;
             bool written = false;
+            PlanRefinementReport refinement;
             if (result.all_ok()) {
               project.path = apply_registration(project.path, result, choice, &points);
+              if (!o->no_refine) {
+                PlanRefinementOptions refine_options;
+                refine_options.registration = options;
+                ConsoleProgress refine_progress("register: refinement on the walls", o->quiet);
+                project.path = refine_on_plan(project.path, &points, project.plan, refine_options,
+                                              &refinement, refine_progress);
+                refine_progress.finish();
+                summary["plan_refinement"] = plan_refinement_to_json(refinement);
+              }
               save_project(project, out);
               write_path_points_file(points, points_file_beside(out));
               written = true;
@@ -81,6 +95,7 @@ Command add_register_command(CLI::App& parent) {
               std::cout << "Registered " << project.path.size() << " frames in " << result.pieces.size()
                         << " piece(s) on the plan:\n";
               print_registration(std::cout, result);
+              print_plan_refinement(std::cout, refinement);
               if (written) std::cout << "Wrote " << out << "\n";
             }
             require_registered(result, o->project);

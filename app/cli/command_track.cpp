@@ -1,7 +1,8 @@
 // `plenopath track --capture DIR|VIDEO | --stills DIR [--first N] [--last M] [--stride K] [--camera-height M]
 // [--plan PLAN.dxf [--layers L ...] [--occluders L ...]] [--anchors ANCHORS.json] [--out PATH.json]
 // [--json]`: the camera path from the panoramas alone (processing/egomotion/egomotion.h); with --plan, each
-// piece then placed on the plan by the tracker's points (processing/registration/registration.h); with
+// piece then placed on the plan by the tracker's points (processing/registration/registration.h) and refined
+// on the walls (plan_refinement.h: drift taken out by the building) unless --no-refine; with
 // --anchors, aligned to the anchors and refined with them as priors (processing/anchors/anchor_refinement.h).
 // With --out, the tracker's points go beside the path file (PATH.points.json, model/path_points.h), in the
 // path's frame, for `plenopath register` later.
@@ -139,6 +140,7 @@ Command add_track_command(CLI::App& parent) {
     std::string capture;
     std::string stills;  // folder of still panoramas: solved as stills without asking
     bool no_auto_stills = false;
+    bool no_refine = false;
     double camera_height = 0.0;
     std::string out;
     bool json = false;
@@ -195,6 +197,9 @@ Command add_track_command(CLI::App& parent) {
   sub->add_option("--plan", options->plan,
                   "Floor plan (DXF): after tracking, place each piece of the path on it by the tracker's "
                   "points on its walls (needs --camera-height)");
+  sub->add_flag("--no-refine", options->no_refine,
+                "With --plan: place each piece by one similarity only (default: then refine the path on the "
+                "walls, which takes out drift)");
   sub->add_option("--layers", options->import.layers, "With --plan: import only these layers (default: all)");
   sub->add_option("--occluders", options->import.occluder_layers,
                   "With --plan: the layers whose lines block sight (default: guessed from the names)");
@@ -339,6 +344,7 @@ Command add_track_command(CLI::App& parent) {
           progress.finish();
         }
         renumber_frames(&r.path, positions);
+        renumber_point_frames(&r.tracked_points, positions);
         if (source->kind() == CaptureKind::kImageFolder)
           for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
         nlohmann::json registration;
@@ -353,6 +359,17 @@ Command add_track_command(CLI::App& parent) {
           if (!options->quiet) print_registration(std::cerr, reg);
           require_registered(reg, options->plan);
           r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
+          if (!options->no_refine) {
+            PlanRefinementOptions refine_options;
+            refine_options.registration = ro;
+            ConsoleProgress refine_progress("track: refinement on the walls", options->quiet);
+            PlanRefinementReport refinement;
+            r.path =
+                refine_on_plan(r.path, &r.tracked_points, plan, refine_options, &refinement, refine_progress);
+            refine_progress.finish();
+            registration["plan_refinement"] = plan_refinement_to_json(refinement);
+            if (!options->quiet) print_plan_refinement(std::cerr, refinement);
+          }
         }
         AnchorRefinementReport anchor_report;
         if (!anchors.empty()) {

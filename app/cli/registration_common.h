@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "processing/registration/plan_refinement.h"
 #include "processing/registration/registration.h"
 
 namespace plenopath::cli {
@@ -14,5 +15,11 @@ nlohmann::json registration_to_json(const RegistrationResult& result);
 void print_registration(std::ostream& out, const RegistrationResult& result);
 // Throws Error listing the pieces that did not fit (their messages), prefixed by `who`.
 void require_registered(const RegistrationResult& result, const std::string& who);
+
+// {"pieces": [{"piece", "refined", "kept", "message", "wall_points", "wall_share_before", "wall_share_after",
+//  "rms_before_m", "rms_after_m", "drift_scale", "drift_bias_deg_per_100_frames", "max_shift_m"}], "seconds"}
+nlohmann::json plan_refinement_to_json(const PlanRefinementReport& report);
+// One line per piece (plan_refinement.h describe()).
+void print_plan_refinement(std::ostream& out, const PlanRefinementReport& report);
 
 }  // namespace plenopath::cli

@@ -8,9 +8,12 @@
 namespace plenopath::studio {
 
 void apply_placement(const PlacementChoices& choices, const std::vector<int>& choice, CameraPath* path,
-                     std::vector<PathPoint>* points) {
+                     std::vector<PathPoint>* points, PlanRefinementReport* report, Progress& progress) {
   std::vector<PathPoint> moved = choices.unplaced_points;
-  *path = apply_registration(choices.unplaced_path, choices.result, choice, &moved);
+  CameraPath placed = apply_registration(choices.unplaced_path, choices.result, choice, &moved);
+  if (choices.refine_on_walls && !choices.plan.occluder_segments().empty())
+    placed = refine_on_plan(placed, &moved, choices.plan, choices.refinement_options, report, progress);
+  *path = std::move(placed);
   if (points) *points = std::move(moved);
 }
 
@@ -36,7 +39,10 @@ PlacementChoices place_project_on_plan(Project& project, Progress& progress, boo
   PlacementChoices choices;
   choices.unplaced_path = project.path;
   choices.unplaced_points = project.path_points;
-  choices.result = register_on_plan(project.path, project.path_points, project.plan, options, progress);
+  choices.plan = project.plan;
+  choices.refinement_options.registration = options;
+  SubProgress search(progress, 0.0, 0.8, "registration");
+  choices.result = register_on_plan(project.path, project.path_points, project.plan, options, search);
 
   int fitted = 0;
   std::string failures;
@@ -57,7 +63,8 @@ PlacementChoices place_project_on_plan(Project& project, Progress& progress, boo
     throw Error("no piece of the path fits the plan:\n" + failures);
   }
   CameraPath placed;
-  apply_placement(choices, choices.choice, &placed, &project.path_points);
+  SubProgress refining(progress, 0.8, 1.0, "refinement on the walls");
+  apply_placement(choices, choices.choice, &placed, &project.path_points, &choices.refinement, refining);
   if (std::optional<VisibilityCells> cells = widgets::cells_following_path(project, placed))
     project.visibility = std::move(*cells);
   project.path = std::move(placed);
@@ -79,6 +86,9 @@ PlacementChoices place_project_on_plan(Project& project, Progress& progress, boo
                     fitted, choices.result.pieces.size(), c.score, 100.0 * c.wall_share,
                     choices.result.seconds);
       *summary = line;
+      int refined = 0;
+      for (const PieceRefinement& r : choices.refinement.pieces) refined += r.kept ? 1 : 0;
+      if (refined > 0) *summary += "; " + std::to_string(refined) + " piece(s) refined on the walls";
       if (fitted < static_cast<int>(choices.result.pieces.size()))
         *summary += "; not placed: " + failures.substr(0, failures.find('\n'));
     } else {

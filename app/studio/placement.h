@@ -3,11 +3,14 @@
 // tracking task (which places the path by itself when the project has a plan). Registration
 // (processing/registration) finds the candidate placements of every piece; per piece an anchor on it picks
 // the candidate, else the best is applied. What registration found is kept (PlacementChoices) so that the
-// map can show the runners-up and the author can pick another one.
+// map can show the runners-up and the author can pick another one. The placed pieces are then refined on the
+// walls (processing/registration/plan_refinement.h), which takes out the tracker's drift; a piece whose fit
+// does not improve stays as the similarity placed it.
 #include <string>
 #include <vector>
 
 #include "model/project.h"
+#include "processing/registration/plan_refinement.h"
 #include "processing/registration/registration.h"
 #include "processing/util/progress.h"
 
@@ -18,6 +21,10 @@ struct PlacementChoices {
   std::vector<PathPoint> unplaced_points;
   RegistrationResult result;
   std::vector<int> choice;  // candidate applied per piece (-1: left as it was)
+  FloorPlan plan;           // the plan registration ran on (the refinement's walls)
+  PlanRefinementOptions refinement_options;
+  bool refine_on_walls = true;
+  PlanRefinementReport refinement;  // of the choice applied last by place_project_on_plan
   bool empty() const { return result.pieces.empty(); }
 };
 
@@ -27,9 +34,11 @@ struct PlacementOutcome {
   std::string summary;       // for the status bar ("placed 1 of 1 piece(s) ...", or why not)
 };
 
-// The path and points with `choice` applied (apply_registration); throws Error on a choice out of range.
+// The path and points with `choice` applied (apply_registration), then refined on the walls when
+// refine_on_walls (`report` gets how); throws Error on a choice out of range.
 void apply_placement(const PlacementChoices& choices, const std::vector<int>& choice, CameraPath* path,
-                     std::vector<PathPoint>* points);
+                     std::vector<PathPoint>* points, PlanRefinementReport* report = nullptr,
+                     Progress& progress = null_progress());
 
 // Why `project` cannot be placed on its plan ("the plan has no sight-blocking layer ..."), or "" when it can.
 std::string placement_precondition(const Project& project);

@@ -71,6 +71,7 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
           f.index < static_cast<int>(project.capture.frame_names.size()))
         f.file = project.capture.frame_names[f.index];
     renumber_frames(&result.path, positions);
+    renumber_point_frames(&result.tracked_points, positions);
     result.path.scale_source = result.scale_source;
     project.path = std::move(result.path);
     project.path_points = std::move(result.tracked_points);

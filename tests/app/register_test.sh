@@ -44,7 +44,13 @@ r = s["registration"]["pieces"]
 assert len(r) == 1 and r[0]["ok"], r
 assert r[0]["wall_share"] > 0.5 and r[0]["free_share"] == 1.0, r[0]
 assert len(r[0]["candidates"]) >= 1 and r[0]["candidates"][0]["score"] == r[0]["score"], r[0]
+# Then refined on the walls: it may only keep a result that fits the walls at least as well.
+f = s["registration"]["plan_refinement"]["pieces"]
+assert len(f) == 1 and f[0]["refined"], f
+assert not f[0]["kept"] or f[0]["wall_share_after"] >= f[0]["wall_share_before"] - 0.005, f
+assert abs(f[0]["drift_scale"] - 1) < 0.05, f
 PY
+grep -q "track: refinement on the walls" "$tmp/t.err" || fail "no refinement progress: $(tail -5 "$tmp/t.err")"
 
 # 2. register: a project holding the unplaced path (track without --plan) and its points beside it.
 "$cli" track --capture "$tmp/r/frames" --camera-height 1.6 --out "$tmp/raw.json" --quiet > /dev/null \
@@ -77,8 +83,13 @@ json.dump(json.load(open(sys.argv[1]))["path"], open(sys.argv[2], "w"))
 PY
 check_on_truth "$tmp/s/placed_path.json" || fail "register: path not on the truth"
 # Registered again, the placed path stays where it is (the points were moved with it).
-"$cli" register --project "$tmp/s/raw.plenopath" --out "$tmp/s/again.plenopath" --json --quiet > "$tmp/g2.json" \
-  || fail "register again exit $?"
+"$cli" register --project "$tmp/s/raw.plenopath" --out "$tmp/s/again.plenopath" --no-refine --json --quiet \
+  > "$tmp/g2.json" || fail "register again exit $?"
+python3 - "$tmp/g2.json" "$tmp/g.json" <<'PY' || fail "--no-refine / refinement json"
+import json, sys
+assert "plan_refinement" not in json.load(open(sys.argv[1]))
+assert json.load(open(sys.argv[2]))["plan_refinement"]["pieces"][0]["refined"]
+PY
 python3 - "$tmp/g2.json" <<'PY' || fail "second registration moved the path: $(cat "$tmp/g2.json")"
 import json, sys
 t = json.load(open(sys.argv[1]))["pieces"][0]["transform"]
