@@ -5,6 +5,11 @@
 //   triangulate them: rays cast by the renderer's ray caster from every 4th frame (72 azimuths x 9
 //   elevations), with 1 % depth noise, in a path frame set by a known similarity (scale 1.01); per scene
 //   the absolute position RMS and heading RMS of the placed path against the walk, and the seconds.
+// - "drift" scenes: the same walks as a drifting tracker gives them (5 % scale error, 0.02 deg of heading
+//   bias per frame: 18 deg over 900 frames, as in the anchor tests), the points cast from every 4th true
+//   pose and carried by the drifted ones; registered, then refined on the walls (plan_refinement.h): the
+//   absolute RMS of both, and the refinement's seconds. The "points" scenes report the refinement too, so
+//   that a refinement that makes a drift-free path worse shows.
 // - "tracked" scene: 120 frames of the office sample rendered (512 x 256), tracked by the egomotion
 //   tracker, registered by its own points: the end-to-end figure.
 // - "baseline": a fixed workload measured in the same run (200 forward DFTs of 512 x 512 floats, the
@@ -19,8 +24,10 @@
 #include <random>
 
 #include "processing/egomotion/egomotion.h"
+#include "processing/registration/plan_refinement.h"
 #include "processing/registration/registration.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/registration/drifted_walk.h"
 
 using namespace plenopath;
 
@@ -123,6 +130,20 @@ CameraPath walk_through(const std::vector<Eigen::Vector2d>& waypoints, std::size
   return path;
 }
 
+double absolute_rms(const CameraPath& placed, const CameraPath& truth) {
+  double sum = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    sum += (placed.frames[i].position() - truth.frames[i].position()).squaredNorm();
+  return std::sqrt(sum / truth.size());
+}
+
+double heading_rms_deg(const CameraPath& placed, const CameraPath& truth) {
+  double sum = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    sum += std::pow(wrap_angle(placed.frames[i].heading - truth.frames[i].heading), 2);
+  return degrees(std::sqrt(sum / truth.size()));
+}
+
 nlohmann::json points_scene(const Scene& s) {
   AutoWalkOptions walk_options;
   walk_options.max_frames = 1000;
@@ -164,6 +185,7 @@ nlohmann::json points_scene(const Scene& s) {
         const Eigen::Vector2d xy = to_piece(p.head<2>());
         q.position = {xy.x(), xy.y(), (p.z() - h) / to_plan.scale};
         q.observations = 4;
+        q.frame = truth.frames[i].index;
         points.push_back(q);
       }
   }
@@ -172,14 +194,24 @@ nlohmann::json points_scene(const Scene& s) {
   const auto t0 = Clock::now();
   const RegistrationResult r = register_on_plan(path, points, s.plan, options);
   const double seconds = seconds_since(t0);
-  const CameraPath placed = apply_registration(path, r);
+  std::vector<PathPoint> moved = points;
+  const CameraPath placed = apply_registration(path, r, {}, &moved);
   double p2 = 0, h2 = 0;
   for (std::size_t i = 0; i < placed.size(); ++i) {
     p2 += (placed.frames[i].position() - truth.frames[i].position()).squaredNorm();
     h2 += std::pow(wrap_angle(placed.frames[i].heading - truth.frames[i].heading), 2);
   }
+  PlanRefinementOptions refine_options;
+  refine_options.registration = options;
+  const auto t1 = Clock::now();
+  PlanRefinementReport refinement;
+  const CameraPath refined = refine_on_plan(placed, &moved, s.plan, refine_options, &refinement);
+  const double refine_seconds = seconds_since(t1);
   const PieceRegistration& p = r.pieces.front();
   return {{"scene", s.name},
+          {"refined_position_rms_m", absolute_rms(refined, truth)},
+          {"refinement_kept", refinement.pieces.front().kept},
+          {"refinement_seconds", refine_seconds},
           {"frames", truth.size()},
           {"length_m", truth.length()},
           {"points", points.size()},
@@ -192,6 +224,44 @@ nlohmann::json points_scene(const Scene& s) {
           {"wall_share", p.candidates.empty() ? 0.0 : p.candidates[0].wall_share},
           {"ambiguity_ratio", std::isfinite(p.ambiguity_ratio()) ? p.ambiguity_ratio() : -1.0},
           {"seconds", seconds}};
+}
+
+nlohmann::json drift_scene(const Scene& s) {
+  AutoWalkOptions walk_options;
+  walk_options.max_frames = 900;
+  walk_options.frame_pattern.clear();
+  const CameraPath truth =
+      s.waypoints.empty() ? auto_walk(s.plan, walk_options) : walk_through(s.waypoints, 900);
+  const double scale = 1.05;
+  const CameraPath tracked = test::drifted(truth, radians(0.02), scale, {3.0, -2.0}, 0.7);
+  std::vector<PathPoint> points =
+      test::cast_points(build_synthetic_scene(s.plan), truth, tracked, scale, 4, 72, 9, 11);
+  const auto t0 = Clock::now();
+  const RegistrationResult r = register_on_plan(tracked, points, s.plan);
+  const double register_seconds = seconds_since(t0);
+  const CameraPath placed = apply_registration(tracked, r, {}, &points);
+  const auto t1 = Clock::now();
+  PlanRefinementReport refinement;
+  const CameraPath refined = refine_on_plan(placed, &points, s.plan, {}, &refinement);
+  const double refine_seconds = seconds_since(t1);
+  const PieceRefinement& pr = refinement.pieces.front();
+  return {{"scene", s.name + "_drift"},
+          {"frames", truth.size()},
+          {"length_m", truth.length()},
+          {"points", points.size()},
+          {"ok", r.all_ok()},
+          {"registered_position_rms_m", absolute_rms(placed, truth)},
+          {"registered_heading_rms_deg", heading_rms_deg(placed, truth)},
+          {"position_rms_m", absolute_rms(refined, truth)},
+          {"heading_rms_deg", heading_rms_deg(refined, truth)},
+          {"refinement_kept", pr.kept},
+          {"refinement_message", pr.message},
+          {"drift_scale", pr.drift_scale},
+          {"wall_share_before", pr.wall_share_before},
+          {"wall_share_after", pr.wall_share_after},
+          {"register_seconds", register_seconds},
+          {"refinement_seconds", refine_seconds},
+          {"seconds", register_seconds + refine_seconds}};
 }
 
 nlohmann::json tracked_scene() {
@@ -265,10 +335,11 @@ int main() {
                                   {4, 9},
                                   {3, 8},
                                   {3, 5.2}}}}) {
-      nlohmann::json j = points_scene(s);
-      j["seconds_per_1000_frames"] = j["seconds"].get<double>() * 1000.0 / j["frames"].get<double>();
-      j["ratio_to_baseline"] = j["seconds"].get<double>() / baseline;
-      scenes.push_back(std::move(j));
+      for (nlohmann::json j : {points_scene(s), drift_scene(s)}) {
+        j["seconds_per_1000_frames"] = j["seconds"].get<double>() * 1000.0 / j["frames"].get<double>();
+        j["ratio_to_baseline"] = j["seconds"].get<double>() / baseline;
+        scenes.push_back(std::move(j));
+      }
     }
     nlohmann::json tracked = tracked_scene();
     tracked["ratio_to_baseline"] = tracked["seconds"].get<double>() / baseline;
