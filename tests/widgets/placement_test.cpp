@@ -242,6 +242,12 @@ TEST(Placement, TrackingKeepsThePointsAndPlacesThePathByItself) {
   for (std::size_t i = 0; i < p.path.size(); ++i)
     worst = std::max(worst, (p.path.frames[i].position() - t.project.path.frames[i].position()).norm());
   EXPECT_LT(worst, 0.15) << outcome->summary;
+  // The points know their frames (capture indices of the path), and the placement was refined on the walls.
+  int with_frame = 0;
+  for (const PathPoint& q : p.path_points) with_frame += p.path.find_frame(q.frame) ? 1 : 0;
+  EXPECT_EQ(with_frame, static_cast<int>(p.path_points.size()));
+  ASSERT_EQ(outcome->choices.refinement.pieces.size(), 1u);
+  EXPECT_TRUE(outcome->choices.refinement.pieces[0].refined) << outcome->choices.refinement.pieces[0].message;
 }
 
 }  // namespace
