@@ -1,5 +1,6 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--json]`: the packaged walkthrough.
+//  [--quality 85] [--pannellum] [--geojson] [--clean-plates] [--json]`: the packaged walkthrough (with
+//  --clean-plates, each keyframe without the people who walked through: processing/cleanplate).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,7 +16,7 @@ Command add_export_command(CLI::App& parent) {
   struct Options {
     std::string project, out;
     int max_size = 0, preview_size = 0, quality = 0;
-    bool pannellum = false, geojson = false, json = false, http_only = false;
+    bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub =
@@ -28,6 +29,8 @@ Command add_export_command(CLI::App& parent) {
   sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
+  sub->add_flag("--clean-plates", o->clean_plates,
+                "Keyframes without the people who walked through (replaced by what neighbouring frames saw)");
   sub->add_flag("--json", o->json, "Machine-readable report");
   return {sub, [o]() {
             const Project project = load_project(o->project);
@@ -39,6 +42,7 @@ Command add_export_command(CLI::App& parent) {
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
+            options.clean_plates = o->clean_plates;
             ConsoleProgress progress("export");
             const TourExportReport report = export_tour(project, options, progress);
             progress.finish();
@@ -49,6 +53,8 @@ Command add_export_command(CLI::App& parent) {
                                           {"capture_frames", report.capture_frames},
                                           {"package_bytes", report.package_bytes},
                                           {"files", report.files.size()},
+                                          {"clean_plates", report.clean_plates},
+                                          {"replaced_pct", report.replaced_pct},
                                           {"warnings", report.warnings}}
                                .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                         << "\n";

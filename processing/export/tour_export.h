@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "model/project.h"
+#include "processing/cleanplate/clean_plate.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -26,6 +27,11 @@ struct TourExportOptions {
   // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
   // script holding it as a data URI. Off only for packages that will always be served over http.
   bool offline_images = true;
+  // Each keyframe as its clean plate (processing/cleanplate): the people who walked through replaced by
+  // what the neighbouring frames saw behind them. Static depth from the capture's depth maps, else from
+  // the plan (walls, pillars, furniture layers, floor and ceiling at the capture's camera height).
+  bool clean_plates = false;
+  CleanPlateOptions clean_plate;
   void check() const;  // throws Error naming the bad field
   static TourExportOptions from_project(const Project& project, const std::string& output);
 };
@@ -37,6 +43,8 @@ struct TourExportReport {
   std::uintmax_t package_bytes = 0;   // total size of the folder's files, or of the .zip
   std::vector<std::string> files;     // package-relative paths written
   std::vector<std::string> warnings;  // e.g. missing hotspot media
+  int clean_plates = 0;               // keyframes exported as clean plates
+  double replaced_pct = 0.0;          // their mean share of pixels replaced
 };
 
 // Throws Error with a clear message: no path or keyframes, unreadable frames, unwritable output, ...
