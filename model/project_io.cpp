@@ -338,7 +338,8 @@ json tour_to_json(const TourSettings& t) {
           {"jpeg_quality", t.jpeg_quality},
           {"start_frame", t.start_frame},
           {"export_pannellum", t.export_pannellum},
-          {"export_geojson", t.export_geojson}};
+          {"export_geojson", t.export_geojson},
+          {"export_clean_plates", t.export_clean_plates}};
 }
 
 TourSettings tour_from_json(const JsonReader& r) {
@@ -352,6 +353,7 @@ TourSettings tour_from_json(const JsonReader& r) {
   t.start_frame = r.integer_or("start_frame", t.start_frame);
   t.export_pannellum = r.boolean_or("export_pannellum", t.export_pannellum);
   t.export_geojson = r.boolean_or("export_geojson", t.export_geojson);
+  t.export_clean_plates = r.boolean_or("export_clean_plates", t.export_clean_plates);
   return t;
 }
 

@@ -42,7 +42,7 @@ Command add_export_command(CLI::App& parent) {
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
-            options.clean_plates = o->clean_plates;
+            options.clean_plates = options.clean_plates || o->clean_plates;
             ConsoleProgress progress("export");
             const TourExportReport report = export_tour(project, options, progress);
             progress.finish();

@@ -14,6 +14,7 @@
 #include <QMimeData>
 #include <QProgressBar>
 #include <QSettings>
+#include <QSignalBlocker>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QStyle>
@@ -219,6 +220,24 @@ void MainWindow::create_actions() {
   QAction* export_tour = file->addAction(tr("&Export tour…"));
   export_tour->setShortcut(tr("Ctrl+Shift+E"));
   new ExportTourReaction(export_tour, *this);
+  // Keyframes exported as clean plates (the people who walked through removed): a tour setting of the
+  // project, one undo step per toggle.
+  QAction* clean_plates = file->addAction(tr("Export Without &People (Clean Plates)"));
+  clean_plates->setObjectName("export_clean_plates");
+  clean_plates->setCheckable(true);
+  clean_plates->setChecked(document_->project().tour.export_clean_plates);
+  connect(clean_plates, &QAction::toggled, this, [this](bool on) {
+    if (document_->project().tour.export_clean_plates == on) return;
+    Project after = document_->snapshot();
+    after.tour.export_clean_plates = on;
+    document_->undo_stack()->push(new widgets::ReplacePartsCommand(
+        *document_, on ? tr("Export clean plates") : tr("Export keyframes as captured"), after,
+        widgets::kSettingsChanged));
+  });
+  connect(document_, &widgets::ProjectDocument::changed, clean_plates, [this, clean_plates] {
+    const QSignalBlocker block(clean_plates);
+    clean_plates->setChecked(document_->project().tour.export_clean_plates);
+  });
   file->addSeparator();
   QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
   quit->setShortcut(QKeySequence::Quit);

@@ -169,6 +169,7 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
   o.jpeg_quality = project.tour.jpeg_quality;
   o.pannellum = project.tour.export_pannellum;
   o.geojson = project.tour.export_geojson;
+  o.clean_plates = project.tour.export_clean_plates;
   return o;
 }
 

@@ -100,6 +100,7 @@ Project make_full_project(const fs::path& dir) {
   p.tour.max_size = 2048;
   p.tour.jpeg_quality = 90;
   p.tour.export_geojson = true;
+  p.tour.export_clean_plates = true;
   return p;
 }
 

@@ -31,6 +31,7 @@
 #include "app/studio/studio_tasks.h"
 #include "model/error.h"
 #include "model/project_io.h"
+#include "processing/export/tour_export.h"
 #include "rig/equirect_sampling.h"
 #include "rig/spherical.h"
 #include "tests/widgets/test_project.h"
@@ -98,6 +99,22 @@ TEST(Studio, MapShowsPlanAndPath) {
   EXPECT_GT(count_near(image, map->widget_pixel_of({5.5, 3.5}), 3, is_path), 0);
   EXPECT_EQ(count_near(image, map->widget_pixel_of({6.0, 1.5}), 3, is_wall), 0);
   EXPECT_GT(count_near(image, map->widget_pixel_of({6.0, 1.5}), 3, is_background), 40);
+}
+
+// File > Export Without People: a tour setting of the project, saved with it, one undo step per toggle.
+TEST(Studio, CleanPlatesAreATourSettingWithUndo) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file)) << s.errors.join("\n").toStdString();
+  QAction* action = s.window.findChild<QAction*>("export_clean_plates");
+  ASSERT_NE(action, nullptr);
+  EXPECT_FALSE(action->isChecked());
+  action->trigger();
+  EXPECT_TRUE(s.window.document().project().tour.export_clean_plates);
+  EXPECT_TRUE(TourExportOptions::from_project(s.window.document().project(), "out").clean_plates);
+  s.window.document().undo_stack()->undo();
+  EXPECT_FALSE(s.window.document().project().tour.export_clean_plates);
+  EXPECT_FALSE(action->isChecked());  // the menu follows the document
 }
 
 TEST(Studio, MapShowsTheEnvelopeOfTheCurrentFrame) {
