@@ -13,7 +13,8 @@ struct TourSettings {
   int start_frame = -1;  // -1 = first keyframe
   bool export_pannellum = false;
   bool export_geojson = false;
-  bool export_clean_plates = false;  // keyframes without the people who walked through (processing/cleanplate)
+  bool export_clean_plates =
+      false;  // keyframes without the people who walked through (processing/cleanplate)
 };
 bool operator==(const TourSettings& l, const TourSettings& r);
 
