@@ -9,15 +9,6 @@
 #include "processing/registration/registration_internal.h"
 
 namespace plenopath::registration_detail {
-namespace {
-
-Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
-}
-
-}  // namespace
-
 std::vector<Eigen::Vector3d> apply_drift_model(const std::vector<Eigen::Vector3d>& start,
                                                const DriftModel& m) {
   std::vector<Eigen::Vector3d> out(start.size());

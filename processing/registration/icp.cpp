@@ -6,15 +6,6 @@
 #include "processing/registration/registration_internal.h"
 
 namespace plenopath::registration_detail {
-namespace {
-
-Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
-}
-
-}  // namespace
-
 Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& wall_points, const PlanRaster& plan,
                        const Similarity2& start, double start_truncation_m,
                        const RegistrationOptions& options) {

@@ -83,11 +83,6 @@ bool PlanRefinementReport::any_kept() const {
 
 namespace {
 
-Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
-}
-
 // The point of `tie` where the poses and the drift scale put it.
 Eigen::Vector2d placed(const DriftTie& tie, const std::vector<std::array<double, 3>>& poses, double scale) {
   const std::array<double, 3>& p = poses[tie.pose];

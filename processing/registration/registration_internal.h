@@ -3,6 +3,7 @@
 // (the plan's rasters), global_search.cpp (rotations x FFT correlation), icp.cpp (robust refinement and
 // the final score). Not part of the public API.
 #include <Eigen/Core>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -13,6 +14,12 @@
 #include "processing/util/progress.h"
 
 namespace plenopath::registration_detail {
+
+// v turned by `angle` radians (counter-clockwise).
+inline Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
 
 // The plan at the fine cell: column = floor((x - origin.x) / cell), row = floor((y - origin.y) / cell).
 struct PlanRaster {

@@ -14,6 +14,7 @@
 
 #include "processing/cleanplate/clean_plate.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/cleanplate/masked_psnr.h"
 
 using namespace plenopath;
 
@@ -33,16 +34,9 @@ std::string first_line(const std::string& cmd) {
   return out;
 }
 
+// JSON holds no infinity: 99 dB stands for identical.
 double psnr(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
-  cv::Mat diff;
-  cv::absdiff(a, b, diff);
-  diff.convertTo(diff, CV_64FC3);
-  diff = diff.mul(diff);
-  diff.setTo(0, ~mask);
-  const cv::Scalar sum = cv::sum(diff);
-  const double n = 3.0 * cv::countNonZero(mask);
-  const double mse = (sum[0] + sum[1] + sum[2]) / std::max(1.0, n);
-  return mse <= 0 ? 99.0 : 10 * std::log10(255.0 * 255.0 / mse);  // 99: identical
+  return std::min(99.0, test::masked_psnr(a, b, mask));
 }
 
 double baseline_seconds() {

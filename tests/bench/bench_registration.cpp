@@ -33,6 +33,9 @@ using namespace plenopath;
 
 namespace {
 
+using test::absolute_rms;
+using test::heading_rms_deg;
+
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -128,20 +131,6 @@ CameraPath walk_through(const std::vector<Eigen::Vector2d>& waypoints, std::size
     along += 0.08;
   }
   return path;
-}
-
-double absolute_rms(const CameraPath& placed, const CameraPath& truth) {
-  double sum = 0;
-  for (std::size_t i = 0; i < truth.size(); ++i)
-    sum += (placed.frames[i].position() - truth.frames[i].position()).squaredNorm();
-  return std::sqrt(sum / truth.size());
-}
-
-double heading_rms_deg(const CameraPath& placed, const CameraPath& truth) {
-  double sum = 0;
-  for (std::size_t i = 0; i < truth.size(); ++i)
-    sum += std::pow(wrap_angle(placed.frames[i].heading - truth.frames[i].heading), 2);
-  return degrees(std::sqrt(sum / truth.size()));
 }
 
 nlohmann::json points_scene(const Scene& s) {

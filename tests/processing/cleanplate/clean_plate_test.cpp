@@ -10,21 +10,12 @@
 
 #include "model/error.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/cleanplate/masked_psnr.h"
 
 namespace plenopath {
 namespace {
 
-// PSNR of `a` against `b` over the pixels of `mask` (all when empty); infinity when equal there.
-double psnr(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
-  cv::Mat diff;
-  cv::absdiff(a, b, diff);
-  diff.convertTo(diff, CV_64FC3);
-  diff = diff.mul(diff);
-  const cv::Scalar sum = cv::sum(mask.empty() ? diff : diff.setTo(0, ~mask));
-  const double n = 3.0 * (mask.empty() ? double(a.total()) : double(cv::countNonZero(mask)));
-  const double mse = (sum[0] + sum[1] + sum[2]) / std::max(1.0, n);
-  return mse <= 0 ? INFINITY : 10 * std::log10(255.0 * 255.0 / mse);
-}
+using test::masked_psnr;
 
 struct Walk {
   FloorPlan plan = make_office_sample_plan();
@@ -78,11 +69,12 @@ TEST(CleanPlate, PeopleWalkingThroughAreReplacedByWhatIsBehindThem) {
     cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
     cv::threshold(diff, people, 8, 255, cv::THRESH_BINARY);
     const int people_px = cv::countNonZero(people);
-    const double before = psnr(original, truth, people), after = psnr(plate.image, truth, people);
-    const double elsewhere = psnr(plate.image, truth, ~people);
+    const double before = masked_psnr(original, truth, people),
+                 after = masked_psnr(plate.image, truth, people);
+    const double elsewhere = masked_psnr(plate.image, truth, ~people);
     std::printf("  consensus PSNR: people %.1f dB, elsewhere %.1f dB; replaced pixels %.1f dB\n",
-                psnr(plate.consensus, truth, people), psnr(plate.consensus, truth, ~people),
-                psnr(plate.image, truth, plate.moving_mask));
+                masked_psnr(plate.consensus, truth, people), masked_psnr(plate.consensus, truth, ~people),
+                masked_psnr(plate.image, truth, plate.moving_mask));
     std::printf(
         "keyframe %d: %d people pixels, PSNR there %.1f -> %.1f dB, elsewhere %.1f dB; %zu neighbours, "
         "%.2f %% replaced, %.1f %% of it unsupported\n",
@@ -105,7 +97,7 @@ TEST(CleanPlate, AWalkWithoutPeopleStaysAsItWas) {
       walk.path, 30, [&](int i) { return walk.rendered(i, false).rgb; },
       [&](int i) { return walk.depth(i); });
   EXPECT_LT(plate.moving_share, 0.002);
-  EXPECT_GE(psnr(plate.image, walk.rendered(30, false).rgb, {}), 45.0);
+  EXPECT_GE(masked_psnr(plate.image, walk.rendered(30, false).rgb, {}), 45.0);
 }
 
 TEST(CleanPlate, BadInputIsAClearError) {

@@ -20,6 +20,7 @@
 #include "processing/export/tour_interop.h"
 #include "processing/export/zip_writer.h"
 #include "rig/synthetic_camera.h"
+#include "tests/processing/cleanplate/masked_psnr.h"
 
 namespace plenopath {
 namespace {
@@ -359,15 +360,7 @@ TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
   cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
   cv::threshold(diff, people, 8, 255, cv::THRESH_BINARY);
   ASSERT_GT(cv::countNonZero(people), 500) << "the keyframe should show people";
-  auto psnr = [&](const cv::Mat& a) {
-    cv::Mat d;
-    cv::absdiff(a, truth, d);
-    d.convertTo(d, CV_64FC3);
-    d = d.mul(d);
-    d.setTo(0, ~people);
-    const cv::Scalar sum = cv::sum(d);
-    return 10 * std::log10(255.0 * 255.0 * 3 * cv::countNonZero(people) / (sum[0] + sum[1] + sum[2]));
-  };
+  auto psnr = [&](const cv::Mat& a) { return test::masked_psnr(a, truth, people); };
   std::printf("people pixels %d: PSNR %.1f dB in the frame, %.1f dB exported; %.2f %% replaced\n",
               cv::countNonZero(people), psnr(original), psnr(exported), report.replaced_pct);
   EXPECT_GT(psnr(exported), psnr(original) + 12.0);

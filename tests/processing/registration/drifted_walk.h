@@ -72,4 +72,19 @@ inline std::vector<PathPoint> cast_points(const SyntheticScene& scene, const Cam
   return points;
 }
 
+// Absolute position RMS (metres) and heading RMS (degrees) on the plan, no alignment: frame i against frame
+// i.
+inline double absolute_rms(const CameraPath& placed, const CameraPath& truth) {
+  double sum = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    sum += (placed.frames[i].position() - truth.frames[i].position()).squaredNorm();
+  return std::sqrt(sum / truth.size());
+}
+inline double heading_rms_deg(const CameraPath& placed, const CameraPath& truth) {
+  double sum = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    sum += std::pow(wrap_angle(placed.frames[i].heading - truth.frames[i].heading), 2);
+  return degrees(std::sqrt(sum / truth.size()));
+}
+
 }  // namespace plenopath::test

@@ -18,6 +18,9 @@
 namespace plenopath {
 namespace {
 
+using test::absolute_rms;
+using test::heading_rms_deg;
+
 CameraPath office_walk(std::size_t frames) {
   CameraPath walk = auto_walk(make_office_sample_plan());
   if (walk.frames.size() > frames) walk.frames.resize(frames);
@@ -25,19 +28,6 @@ CameraPath office_walk(std::size_t frames) {
 }
 
 // Absolute position RMS on the plan, no alignment: frame i against frame i.
-double absolute_rms(const CameraPath& placed, const CameraPath& truth) {
-  double sum = 0;
-  for (std::size_t i = 0; i < truth.size(); ++i)
-    sum += (placed.frames[i].position() - truth.frames[i].position()).squaredNorm();
-  return std::sqrt(sum / truth.size());
-}
-
-double heading_rms_deg(const CameraPath& placed, const CameraPath& truth) {
-  double sum = 0;
-  for (std::size_t i = 0; i < truth.size(); ++i)
-    sum += std::pow(wrap_angle(placed.frames[i].heading - truth.frames[i].heading), 2);
-  return degrees(std::sqrt(sum / truth.size()));
-}
 
 struct Drifted {
   CameraPath truth, tracked;
