@@ -44,7 +44,7 @@ bench: build
 
 fuzz: CMAKE_FLAGS += -DPLENOPATH_BUILD_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DPLENOPATH_BUILD_STUDIO=OFF
 fuzz: BUILD_DIR := build-fuzz
-FUZZ_TARGETS := fuzz_dxf_import fuzz_gps_track fuzz_image_header fuzz_project fuzz_path fuzz_anchors fuzz_rig fuzz_tour_json fuzz_spherical_video
+FUZZ_TARGETS := fuzz_dxf_import fuzz_gps_track fuzz_image_header fuzz_project fuzz_path fuzz_path_points fuzz_anchors fuzz_rig fuzz_tour_json fuzz_spherical_video
 FUZZ_SECONDS ?= 600
 fuzz: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)

@@ -16,7 +16,10 @@ bool operator==(const PathPoint& l, const PathPoint& r) {
 
 std::vector<PathPoint> read_path_points_file(const std::string& file) {
   const nlohmann::json json = read_json_file(file);
-  const JsonReader root(json, file);
+  return path_points_from_json(JsonReader(json, file));
+}
+
+std::vector<PathPoint> path_points_from_json(const JsonReader& root) {
   if (root.string_or("format", "") != "plenopath-path-points")
     root.fail("not a points file (\"format\" must be \"plenopath-path-points\")");
   if (root.string_or("units", "m") != "m") root.at("units").fail("units must be \"m\"");

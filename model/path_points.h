@@ -28,6 +28,9 @@ bool operator==(const PathPoint& l, const PathPoint& r);
 
 // Throws Error naming the file (unreadable, not a points file, a bad entry with its position).
 std::vector<PathPoint> read_path_points_file(const std::string& file);
+class JsonReader;
+// The same from parsed JSON (`json` names the file in errors).
+std::vector<PathPoint> path_points_from_json(const JsonReader& json);
 // Written atomically; throws Error naming the file.
 void write_path_points_file(const std::vector<PathPoint>& points, const std::string& file);
 // "dir/P.plenopath" -> "dir/P.points.json", "dir/path.json" -> "dir/path.points.json".

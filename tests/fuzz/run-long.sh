@@ -10,11 +10,11 @@ shift $(( $# >= 2 ? 2 : 1 ))
 here=$(cd "$(dirname "$0")" && pwd)
 data="$here/../data"
 declare -A seeds=([dxf_import]="$data/dxf $data/dxf-ezdxf" [gps_track]="$data/fuzz/gps" [image_header]="$data/fuzz/image"
-                  [project]="$data/fuzz/project $data/projects" [path]="$data/fuzz/path" [anchors]="$data/fuzz/anchors"
+                  [project]="$data/fuzz/project $data/projects" [path]="$data/fuzz/path" [path_points]="$data/fuzz/points" [anchors]="$data/fuzz/anchors"
                   [rig]="$data/fuzz/rig" [tour_json]="$data/fuzz/tour" [spherical_video]="$data/fuzz/spherical")
-declare -A dicts=([dxf_import]=dxf [gps_track]=gps [image_header]=image [project]=json [path]=json [anchors]=json [rig]=json [tour_json]=json [spherical_video]=mp4)
+declare -A dicts=([dxf_import]=dxf [gps_track]=gps [image_header]=image [project]=json [path]=json [path_points]=json [anchors]=json [rig]=json [tour_json]=json [spherical_video]=mp4)
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(dxf_import gps_track image_header project path anchors rig tour_json spherical_video)
+[[ ${#targets[@]} -gt 0 ]] || targets=(dxf_import gps_track image_header project path path_points anchors rig tour_json spherical_video)
 summary="$build/fuzz-summary.txt"
 status=0
 for t in "${targets[@]}"; do
