@@ -153,10 +153,10 @@ void refine_piece(const CameraPath& piece, const std::vector<DriftTie>& ties, co
   report->free_share_before = before.free_share;
 
   // The subsample that enters the solver (the fit above and below sees every tie).
-  std::vector<const DriftTie*> used;
+  std::vector<DriftTie> used;
   const std::size_t stride =
       std::max<std::size_t>(1, (ties.size() + options.max_wall_points - 1) / options.max_wall_points);
-  for (std::size_t i = 0; i < ties.size(); i += stride) used.push_back(&ties[i]);
+  for (std::size_t i = 0; i < ties.size(); i += stride) used.push_back(ties[i]);
 
   // Stiff rounds: the drift model and the placement only (drift_fit.cpp).
   std::vector<Eigen::Vector3d> start3(n);
@@ -177,9 +177,7 @@ void refine_piece(const CameraPath& piece, const std::vector<DriftTie>& ties, co
   fit.bias_sigma_rad = options.drift_bias_sigma_rad;
   const double stiff_share = double(options.stiff_rounds) / (options.stiff_rounds + options.flexible_rounds);
   SubProgress stiff_progress(progress, 0.0, stiff_share, "drift model");
-  std::vector<DriftTie> used_ties;
-  for (const DriftTie* t : used) used_ties.push_back(*t);
-  const DriftModel model = fit_drift_model(start3, used_ties, grid, fit, stiff_progress);
+  const DriftModel model = fit_drift_model(start3, used, grid, fit, stiff_progress);
   const std::vector<Eigen::Vector3d> modelled = apply_drift_model(start3, model);
   std::vector<std::array<double, 3>> poses(n);
   for (std::size_t i = 0; i < n; ++i) poses[i] = {modelled[i].x(), modelled[i].y(), modelled[i].z()};
@@ -212,13 +210,13 @@ void refine_piece(const CameraPath& piece, const std::vector<DriftTie>& ties, co
     problem.AddResidualBlock(pose_graph::HeadingPrior::Create(start[0][2], options.start_heading_sigma_rad),
                              nullptr, poses[0].data());
     int tied = 0;
-    for (const DriftTie* tie : used) {
+    for (const DriftTie& tie : used) {
       Eigen::Vector2d on_wall, normal;
-      const std::array<double, 3>& camera = poses[tie->pose];
-      if (!wall_of(placed(*tie, poses, drift[0]), {camera[0], camera[1]}, grid, within, &on_wall, &normal))
+      const std::array<double, 3>& camera = poses[tie.pose];
+      if (!wall_of(placed(tie, poses, drift[0]), {camera[0], camera[1]}, grid, within, &on_wall, &normal))
         continue;
-      problem.AddResidualBlock(WallResidual::Create(tie->local, on_wall, normal, options.wall_sigma_m),
-                               &wall_loss, poses[tie->pose].data(), drift.data());
+      problem.AddResidualBlock(WallResidual::Create(tie.local, on_wall, normal, options.wall_sigma_m),
+                               &wall_loss, poses[tie.pose].data(), drift.data());
       ++tied;
     }
     report->wall_points = tied;

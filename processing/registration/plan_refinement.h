@@ -1,15 +1,17 @@
 #pragma once
 // Plan-aware refinement (issue 19): after registration, the walls of the plan correct the path's drift
-// without anchors. A pose graph (Ceres) over the frames of each placed piece:
-//   - steps: every step's relative motion as tracked, with one drift unknown per piece {scale, turn bias
-//     per step}, as in the anchor refinement (processing/anchors/pose_graph_costs.h);
+// without anchors, for each placed piece:
 //   - walls: each wall point (PathPoint with a frame, in the registration's height band) moves rigidly with
-//     the pose of the frame it is tied to (its offset scaled by the drift scale) and is pulled onto the wall
-//     it lies on (point-to-line residual, Huber loss), only when it is clearly on one: nearer than the
-//     round's association distance, projecting inside the segment. Rounds re-associate the points with a
-//     shrinking distance (0.5 to 0.1 m by default), the first ones with the path's shape held but for the
-//     drift model, so a drift of a few decimetres is taken in before single stretches may bend.
-//   - a weak prior on the first frame's pose holds what the walls do not fix (a corridor's length).
+//     the pose of the frame it is tied to (its offset scaled by the drift scale) and is pulled onto the first
+//     wall the ray from that frame meets (projective association: what the camera saw there; the nearest
+//     wall would let desks and door frames pull), point-to-line residual with a Cauchy loss, when it lies
+//     within the round's association distance of that wall;
+//   - stiff rounds (drift_fit.cpp): the path keeps its tracked shape but for the drift model {scale, turn
+//     bias per step} and its placement, five unknowns fitted by Gauss-Newton while the association distance
+//     shrinks (0.5 to 0.1 m by default), so a drift of a few decimetres is taken in at once;
+//   - flexible rounds: a pose graph (Ceres) whose steps keep every step's tracked motion with the drift
+//     block, as in the anchor refinement (processing/anchors/pose_graph_costs.h), so single stretches may
+//     bend; a weak prior on the first frame's pose holds what the walls do not fix (a corridor's length).
 // Safeguard: the refined piece is kept only when its wall fit (the share of wall points within
 // inlier_tolerance_m of a wall) does not get worse and its frames stay in free space; otherwise the piece
 // stays as registered and the report says why. Anchors are not used here: the anchor refinement that runs

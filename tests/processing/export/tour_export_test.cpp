@@ -35,6 +35,26 @@ fs::path test_dir(const std::string& name) {
   return dir;
 }
 
+// Renders `walk` into dir/frames (PNG) and makes it the project's capture and path.
+void write_rendered_capture(const fs::path& dir, const SyntheticScene& scene, const RenderOptions& render,
+                            CameraPath* walk, Project* p) {
+  fs::create_directories(dir / "frames");
+  for (PathFrame& f : walk->frames) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.png", f.index);
+    cv::imwrite((dir / "frames" / name).string(), render_panorama(scene, f, render).rgb);
+    f.file = std::string("frames/") + name;
+    p->capture.frame_names.push_back(name);
+  }
+  p->path = *walk;
+  p->capture.kind = CaptureKind::kImageFolder;
+  p->capture.source = (dir / "frames").string();
+  p->capture.frame_count = static_cast<int>(walk->frames.size());
+  p->capture.width = render.width;
+  p->capture.height = render.height;
+  p->capture.camera_height_m = 1.6;
+}
+
 // A small rendered capture of the office sample with keyframes, hotspots and a geo-anchor.
 Project make_rendered_project(const fs::path& dir, int frame_count = 12, int width = 256) {
   Project p;
@@ -47,21 +67,7 @@ Project make_rendered_project(const fs::path& dir, int frame_count = 12, int wid
   render.width = width;
   render.height = width / 2;
   render.depth = false;
-  fs::create_directories(dir / "frames");
-  for (PathFrame& f : walk.frames) {
-    char name[32];
-    std::snprintf(name, sizeof name, "%06d.png", f.index);
-    cv::imwrite((dir / "frames" / name).string(), render_panorama(scene, f, render).rgb);
-    f.file = std::string("frames/") + name;
-    p.capture.frame_names.push_back(name);
-  }
-  p.path = walk;
-  p.capture.kind = CaptureKind::kImageFolder;
-  p.capture.source = (dir / "frames").string();
-  p.capture.frame_count = static_cast<int>(walk.frames.size());
-  p.capture.width = render.width;
-  p.capture.height = render.height;
-  p.capture.camera_height_m = 1.6;
+  write_rendered_capture(dir, scene, render, &walk, &p);
   p.keyframes.indices = {0, 5, frame_count - 1};
   p.keyframes.rank = {0, 2, 1};
   p.visibility.cells = {{0, 5, 0.0, 0.4, 0.4, 20.0, 21.0}, {5, frame_count - 1, 0.4, 0.8, 0.4, 30.0, 29.0}};
@@ -312,7 +318,6 @@ TEST_F(TourExportTest, ClearErrors) {
 TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
   const fs::path dir = fs::temp_directory_path() / ("plenopath_clean_export_" + std::to_string(getpid()));
   fs::remove_all(dir);
-  fs::create_directories(dir / "frames");
   Project p;
   p.plan = make_office_sample_plan();
   AutoWalkOptions walk_options;
@@ -327,19 +332,7 @@ TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
   render.frame_rate = 10;
   RenderOptions without = render;
   without.people = 0;
-  for (PathFrame& f : walk.frames) {
-    char name[32];
-    std::snprintf(name, sizeof name, "%06d.png", f.index);
-    cv::imwrite((dir / "frames" / name).string(), render_panorama(scene, f, render).rgb);
-    p.capture.frame_names.push_back(name);
-  }
-  p.path = walk;
-  p.capture.kind = CaptureKind::kImageFolder;
-  p.capture.source = (dir / "frames").string();
-  p.capture.frame_count = static_cast<int>(walk.frames.size());
-  p.capture.width = render.width;
-  p.capture.height = render.height;
-  p.capture.camera_height_m = 1.6;
+  write_rendered_capture(dir, scene, render, &walk, &p);
   const int key = 25;
   p.keyframes.indices = {key};
   p.keyframes.rank = {0};
