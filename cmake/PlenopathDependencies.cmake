@@ -2,7 +2,7 @@
 
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(nlohmann_json 3.10 REQUIRED)
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio video features2d calib3d)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio video features2d calib3d photo objdetect)
 find_package(CGAL REQUIRED)
 find_package(Ceres REQUIRED)
 find_package(CLI11 REQUIRED)

@@ -35,6 +35,9 @@ struct Capture {
   std::vector<GpsSample> gps_track;  // optional
   double gps_time_offset_s = 0.0;    // capture time of frame 0 in the GPS track's clock
   double camera_height_m = 0.0;      // 0 = unknown
+  // Optional: an image of the frames' size, black where the rig (trolley, operator, tripod) covers every
+  // frame, white elsewhere (as `track --mask`); the tracker's own estimate is used when it is empty.
+  std::string rig_mask;
 
   bool empty() const { return kind == CaptureKind::kNone; }
   // Seconds from the source's frame 0 to kept frame k: its stored time, else (first_frame + k * stride) /

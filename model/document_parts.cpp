@@ -95,9 +95,11 @@ bool operator==(const GeoAnchor& l, const GeoAnchor& r) {
 
 bool operator==(const TourSettings& l, const TourSettings& r) {
   return std::tie(l.title, l.description, l.max_size, l.preview_size, l.jpeg_quality, l.start_frame,
-                  l.export_pannellum, l.export_geojson, l.export_clean_plates) ==
-         std::tie(r.title, r.description, r.max_size, r.preview_size, r.jpeg_quality, r.start_frame,
-                  r.export_pannellum, r.export_geojson, r.export_clean_plates);
+                  l.export_pannellum, l.export_geojson, l.export_clean_plates, l.nadir_patch, l.nadir_image,
+                  l.blur_faces) == std::tie(r.title, r.description, r.max_size, r.preview_size,
+                                            r.jpeg_quality, r.start_frame, r.export_pannellum,
+                                            r.export_geojson, r.export_clean_plates, r.nadir_patch,
+                                            r.nadir_image, r.blur_faces);
 }
 
 bool operator==(const Project& l, const Project& r) {

@@ -109,6 +109,7 @@ json capture_to_json(const Capture& c, const std::string& base) {
               {"gps_track", gps},
               {"gps_time_offset_s", c.gps_time_offset_s},
               {"camera_height_m", c.camera_height_m}};
+  if (!c.rig_mask.empty()) out["rig_mask"] = path_relative_to(c.rig_mask, base);
   if (!c.frame_times_s.empty()) out["frame_times_s"] = c.frame_times_s;  // variable-rate video only
   return out;
 }
@@ -144,6 +145,7 @@ Capture capture_from_json(const JsonReader& r, const std::string& base) {
     }
   }
   c.depth_folder = path_resolved_against(r.string_or("depth_folder", ""), base);
+  c.rig_mask = path_resolved_against(r.string_or("rig_mask", ""), base);
   if (auto gps = r.find("gps_track"))
     for (std::size_t i = 0; i < gps->size(); ++i) {
       const JsonReader g = gps->at(i);
@@ -330,19 +332,23 @@ GeoAnchor geo_from_json(const JsonReader& r) {
   return g;
 }
 
-json tour_to_json(const TourSettings& t) {
-  return {{"title", t.title},
-          {"description", t.description},
-          {"max_size", t.max_size},
-          {"preview_size", t.preview_size},
-          {"jpeg_quality", t.jpeg_quality},
-          {"start_frame", t.start_frame},
-          {"export_pannellum", t.export_pannellum},
-          {"export_geojson", t.export_geojson},
-          {"export_clean_plates", t.export_clean_plates}};
+json tour_to_json(const TourSettings& t, const std::string& base) {
+  json out = {{"title", t.title},
+              {"description", t.description},
+              {"max_size", t.max_size},
+              {"preview_size", t.preview_size},
+              {"jpeg_quality", t.jpeg_quality},
+              {"start_frame", t.start_frame},
+              {"export_pannellum", t.export_pannellum},
+              {"export_geojson", t.export_geojson},
+              {"export_clean_plates", t.export_clean_plates},
+              {"nadir_patch", to_string(t.nadir_patch)},
+              {"blur_faces", t.blur_faces}};
+  if (!t.nadir_image.empty()) out["nadir_image"] = path_relative_to(t.nadir_image, base);
+  return out;
 }
 
-TourSettings tour_from_json(const JsonReader& r) {
+TourSettings tour_from_json(const JsonReader& r, const std::string& base) {
   TourSettings t;
   t.title = r.string_or("title", t.title);
   t.description = r.string_or("description", t.description);
@@ -354,6 +360,9 @@ TourSettings tour_from_json(const JsonReader& r) {
   t.export_pannellum = r.boolean_or("export_pannellum", t.export_pannellum);
   t.export_geojson = r.boolean_or("export_geojson", t.export_geojson);
   t.export_clean_plates = r.boolean_or("export_clean_plates", t.export_clean_plates);
+  t.nadir_patch = enum_from_json(r, "nadir_patch", t.nadir_patch);
+  t.nadir_image = path_resolved_against(r.string_or("nadir_image", ""), base);
+  t.blur_faces = r.boolean_or("blur_faces", t.blur_faces);
   return t;
 }
 
@@ -371,7 +380,7 @@ json project_to_json(const Project& p, const std::string& base) {
           {"keyframes", keyframes_to_json(p.keyframes)},
           {"hotspots", hotspots_to_json(p.hotspots, base)},
           {"geo_anchor", geo_to_json(p.geo)},
-          {"tour", tour_to_json(p.tour)}};
+          {"tour", tour_to_json(p.tour, base)}};
 }
 
 Project project_from_json(const json& j, const std::string& base, const std::string& file) {
@@ -395,7 +404,7 @@ Project project_from_json(const json& j, const std::string& base, const std::str
   if (auto v = r.find("keyframes")) p.keyframes = keyframes_from_json(*v);
   if (auto v = r.find("hotspots")) p.hotspots = hotspots_from_json(*v, base);
   if (auto v = r.find("geo_anchor")) p.geo = geo_from_json(*v);
-  if (auto v = r.find("tour")) p.tour = tour_from_json(*v);
+  if (auto v = r.find("tour")) p.tour = tour_from_json(*v, base);
   return p;
 }
 

@@ -36,6 +36,8 @@ uniform vec3 up;
 uniform float tan_half_fov;
 uniform float aspect;
 uniform vec2 image_scale;
+uniform sampler2D after;
+uniform float split;  // > 1: no comparison
 in vec2 ndc;
 out vec4 colour;
 const float PI = 3.14159265358979;
@@ -51,7 +53,8 @@ void main() {
     float elevation = atan(d.z, length(d.xy));
     uv = vec2((azimuth + PI) / (2.0 * PI), (0.5 * PI - elevation) / PI);
   }
-  colour = vec4(texture(equirect, uv).rgb, 1.0);
+  if (0.5 * ndc.x + 0.5 > split) colour = vec4(texture(after, uv).rgb, 1.0);
+  else colour = vec4(texture(equirect, uv).rgb, 1.0);
 }
 )";
 
@@ -67,7 +70,10 @@ PanoramaView::PanoramaView(ProjectDocument& document, FrameProvider& frames, QWi
       hotspots_(new HotspotEditor(document, *this)) {
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(240, 160);
-  connect(&document_, &ProjectDocument::current_position_changed, this, [this] { show_current(); });
+  connect(&document_, &ProjectDocument::current_position_changed, this, [this] {
+    if (comparing() && document_.current_position() != comparison_position_) clear_comparison();
+    show_current();
+  });
   connect(&document_, &ProjectDocument::changed, this, [this](unsigned flags) {
     if (flags & (kCaptureChanged | kPathChanged)) {
       shown_position_ = -1;
@@ -100,7 +106,8 @@ PanoramaView::~PanoramaView() {
 
 void PanoramaView::release_gl() {
   if (texture_) glDeleteTextures(1, &texture_);
-  texture_ = 0;
+  if (after_texture_) glDeleteTextures(1, &after_texture_);
+  texture_ = after_texture_ = 0;
   quad_.reset();
   vao_.reset();
   program_.reset();
@@ -155,6 +162,7 @@ void PanoramaView::initializeGL() {
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   vao_->release();
   glGenTextures(1, &texture_);
+  glGenTextures(1, &after_texture_);
   texture_size_ = QSize();
   // A new context lost the old texture: upload the shown frame again.
   if (shown_position_ >= 0) {
@@ -163,24 +171,55 @@ void PanoramaView::initializeGL() {
   }
 }
 
-void PanoramaView::upload_pending_image() {
-  if (pending_image_.isNull()) return;
+void PanoramaView::set_comparison(int position, const QImage& after, const QString& label) {
+  comparison_position_ = position;
+  comparison_label_ = label;
+  pending_after_ = after;
+  if (document_.current_position() != position) document_.set_current_position(position);
+  emit comparison_changed(true);
+  update();
+}
+
+void PanoramaView::clear_comparison() {
+  if (!comparing()) return;
+  comparison_position_ = -1;
+  pending_after_ = QImage();
+  dragging_split_ = false;
+  emit comparison_changed(false);
+  update();
+}
+
+void PanoramaView::set_comparison_split(double split) {
+  split_ = std::clamp(split, 0.0, 1.0);
+  update();
+}
+
+// An image into a texture, top row first (texture v = 0 is the zenith), repeating across the seam.
+static void upload_equirect(QOpenGLFunctions& gl, unsigned texture, const QImage& source) {
   GLint max_size = 4096;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-  QImage image = pending_image_.convertToFormat(QImage::Format_RGBA8888);
+  gl.glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  QImage image = source.convertToFormat(QImage::Format_RGBA8888);
   if (image.width() > max_size || image.height() > max_size)
     image = image.scaled(std::min(image.width(), static_cast<int>(max_size)),
                          std::min(image.height(), static_cast<int>(max_size) / 2), Qt::KeepAspectRatio,
                          Qt::SmoothTransformation);
-  glBindTexture(GL_TEXTURE_2D, texture_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  // Row 0 of the image (the zenith) goes first, so texture v = 0 is the top row.
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, image.width(), image.height(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               image.constBits());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // across the seam
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl.glBindTexture(GL_TEXTURE_2D, texture);
+  gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, image.width(), image.height(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                  image.constBits());
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void PanoramaView::upload_pending_image() {
+  if (!pending_after_.isNull() && after_texture_) {
+    upload_equirect(*this, after_texture_, pending_after_);
+    pending_after_ = QImage();
+  }
+  if (pending_image_.isNull()) return;
+  upload_equirect(*this, texture_, pending_image_);
   texture_size_ = pending_image_.size();
   shown_position_ = pending_position_;
   pending_image_ = QImage();
@@ -209,6 +248,11 @@ void PanoramaView::paintGL() {
     const QVector2D scale = aspect > image_aspect ? QVector2D(image_aspect / aspect, 1.0f)
                                                   : QVector2D(1.0f, aspect / image_aspect);
     program_->setUniformValue("image_scale", scale);
+    const bool compare = comparing() && shown_position_ == comparison_position_;
+    program_->setUniformValue("after", 1);
+    program_->setUniformValue("split", static_cast<GLfloat>(compare ? split_ : 2.0));
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, after_texture_);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, texture_);
     vao_->bind();
@@ -223,6 +267,29 @@ void PanoramaView::draw_overlay() {
   QPainter painter(this);
   painter.setRenderHint(QPainter::Antialiasing);
   hotspots_->paint(painter);
+  if (comparing() && shown_position_ == comparison_position_) {
+    // The split line with a grip, and what each side shows.
+    const double x = split_ * width();
+    painter.setPen(QPen(QColor(255, 255, 255, 220), 2));
+    painter.drawLine(QPointF(x, 0), QPointF(x, height() - 22));
+    painter.setBrush(QColor(255, 255, 255, 220));
+    painter.drawEllipse(QPointF(x, height() / 2.0), 7, 7);
+    QFont label_font = painter.font();
+    label_font.setBold(true);
+    painter.setFont(label_font);
+    const QString left_text = tr("Captured");
+    const double left_width = painter.fontMetrics().horizontalAdvance(left_text) + 8.0,
+                 right_width = painter.fontMetrics().horizontalAdvance(comparison_label_) + 8.0;
+    const QRectF left_label(std::max(4.0, x - 8 - left_width), 8, left_width, 20),
+        right_label(std::min(x + 8, width() - 4 - right_width), x + 8 + right_width > width() - 4 ? 32 : 8,
+                    right_width, 20);
+    painter.fillRect(left_label, QColor(0, 0, 0, 120));
+    painter.fillRect(right_label, QColor(0, 0, 0, 120));
+    painter.setPen(Qt::white);
+    painter.drawText(left_label, Qt::AlignCenter, left_text);
+    painter.drawText(right_label, Qt::AlignCenter, comparison_label_);
+    painter.setFont(QFont());
+  }
 
   // Caption: frame, look direction; or why there is nothing to show.
   painter.setPen(Qt::white);
@@ -294,10 +361,19 @@ std::optional<QPointF> PanoramaView::widget_point_of(const SphericalAngles& dire
 
 void PanoramaView::mousePressEvent(QMouseEvent* event) {
   last_mouse_ = event->pos();
+  if (comparing() && event->button() == Qt::LeftButton &&
+      std::abs(event->pos().x() - split_ * width()) <= 8) {
+    dragging_split_ = true;
+    return;
+  }
   hotspots_->mouse_press(event);
 }
 
 void PanoramaView::mouseReleaseEvent(QMouseEvent* event) {
+  if (dragging_split_) {
+    dragging_split_ = false;
+    return;
+  }
   if (!hotspots_->mouse_release(event)) QOpenGLWidget::mouseReleaseEvent(event);
 }
 
@@ -306,6 +382,10 @@ void PanoramaView::mouseDoubleClickEvent(QMouseEvent* event) {
 }
 
 void PanoramaView::mouseMoveEvent(QMouseEvent* event) {
+  if (dragging_split_) {
+    set_comparison_split(event->pos().x() / static_cast<double>(std::max(1, width())));
+    return;
+  }
   if (hotspots_->mouse_move(event)) return;
   if (!(event->buttons() & Qt::LeftButton) || equirect_mode_) return;
   const QPoint delta = event->pos() - last_mouse_;
@@ -339,6 +419,12 @@ void PanoramaView::keyPressEvent(QKeyEvent* event) {
       break;
     case Qt::Key_E:
       set_equirect_mode(!equirect_mode_);
+      break;
+    case Qt::Key_Escape:
+      if (comparing())
+        clear_comparison();
+      else
+        QOpenGLWidget::keyPressEvent(event);
       break;
     default:
       QOpenGLWidget::keyPressEvent(event);

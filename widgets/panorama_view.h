@@ -2,7 +2,9 @@
 // The panorama: a perspective view of the current frame's equirectangular image, drawn by a fragment
 // shader that turns each screen pixel into a bearing and looks it up per rig/spherical.h's convention.
 // Drag to look around, wheel to change the field of view, Left/Right (or PageUp/PageDown) to step frames,
-// E to toggle the whole equirectangular image with the hotspots outlined. Hotspot authoring (new quads,
+// E to toggle the whole equirectangular image with the hotspots outlined. A comparison (the clean plate of
+// the shown frame) splits the view: left of a vertical line the frame as captured, right of it the other
+// image, the line dragged with the mouse; Esc or another frame ends it. Hotspot authoring (new quads,
 // handles, Delete, Esc) and the hotspot overlay live in HotspotEditor (widgets/hotspot_editor.h).
 #include <QImage>
 #include <QOpenGLFunctions>
@@ -46,12 +48,20 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   std::optional<QPointF> widget_point_of(const SphericalAngles& direction) const;
   // The letterboxed image's rectangle in whole-image mode (widget pixels).
   QRectF image_box() const;
+  // Before/after: `after` (the same size as the frame, equirectangular) shown right of the split while
+  // `position` is on screen; `label` names it on the view. Another frame, Esc or clear_comparison() end it.
+  void set_comparison(int position, const QImage& after, const QString& label);
+  void clear_comparison();
+  bool comparing() const { return comparison_position_ >= 0; }
+  double comparison_split() const { return split_; }  // share of the width left of the line
+  void set_comparison_split(double split);
   // Hotspot authoring and overlay in this view.
   HotspotEditor& hotspot_editor() const { return *hotspots_; }
 
  signals:
   void image_shown(int position);
   void equirect_mode_changed(bool whole_image);
+  void comparison_changed(bool comparing);
 
  protected:
   void initializeGL() override;
@@ -75,6 +85,12 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   std::unique_ptr<QOpenGLVertexArrayObject> vao_;
   std::unique_ptr<QOpenGLBuffer> quad_;
   unsigned texture_ = 0;
+  unsigned after_texture_ = 0;
+  QImage pending_after_;  // uploaded at the next paint
+  int comparison_position_ = -1;
+  QString comparison_label_;
+  double split_ = 0.5;
+  bool dragging_split_ = false;
   QImage pending_image_;  // uploaded at the next paint
   QSize texture_size_;
   int pending_position_ = -1;

@@ -22,6 +22,7 @@
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_session.h"
 #include "processing/sampling/uniform_sampling.h"
+#include "widgets/clean_plate_box.h"
 #include "widgets/document_commands.h"
 #include "widgets/project_document.h"
 
@@ -137,6 +138,8 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(form);
   layout->addWidget(statistics_);
+  clean_plates_ = new CleanPlateBox(document_, this);
+  layout->addWidget(clean_plates_);
   layout->addStretch(1);
 
   for (QSlider* s : {budget_, exponent_, boost_}) {

@@ -18,6 +18,7 @@ class QTimer;
 
 namespace plenopath::widgets {
 
+class CleanPlateBox;
 class ProjectDocument;
 
 class SamplingPanel : public QWidget {
@@ -30,6 +31,8 @@ class SamplingPanel : public QWidget {
   QSlider* exponent_slider() const { return exponent_; }
   QSlider* boost_slider() const { return boost_; }
   QComboBox* method_box() const { return method_; }
+  // How keyframes are exported: without people and rig, the nadir patch, faces (clean_plate_box.h).
+  CleanPlateBox* clean_plate_box() const { return clean_plates_; }
   QString statistics_text() const;
 
   // The parameters the controls show now.
@@ -71,6 +74,7 @@ class SamplingPanel : public QWidget {
   QLabel* boost_label_;
   QLabel* statistics_;
   QTimer* progress_timer_;
+  CleanPlateBox* clean_plates_;
   int next_session_ = 1;
   int drag_session_ = 0;
   bool showing_ = false;  // controls are being set from the document: no resampling

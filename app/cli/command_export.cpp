@@ -1,12 +1,15 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--clean-plates] [--json]`: the packaged walkthrough (with
-//  --clean-plates, each keyframe without the people who walked through: processing/cleanplate).
+//  [--quality 85] [--pannellum] [--geojson] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
+//  [--no-rig-fill]]
+//  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
+//  people who walked through and without the rig: processing/cleanplate).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
 #include "app/cli/console_progress.h"
+#include "model/error.h"
 #include "model/project_io.h"
 #include "processing/export/tour_export.h"
 
@@ -17,6 +20,8 @@ Command add_export_command(CLI::App& parent) {
     std::string project, out;
     int max_size = 0, preview_size = 0, quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
+    bool no_rig_fill = false, blur_faces = false;
+    std::string nadir, rig_mask;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub =
@@ -30,10 +35,20 @@ Command add_export_command(CLI::App& parent) {
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
   sub->add_flag("--clean-plates", o->clean_plates,
-                "Keyframes without the people who walked through (replaced by what neighbouring frames saw)");
+                "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
+                "and without the rig (trolley, operator, tripod: filled from frames further along)");
+  sub->add_option("--nadir", o->nadir,
+                  "With --clean-plates, what covers the rig where no frame saw behind it: blur (a blurred "
+                  "fill, the default), none, or an image file (a logo on a disc at the nadir)");
+  sub->add_flag("--no-rig-fill", o->no_rig_fill, "With --clean-plates, leave the rig as captured");
+  sub->add_option("--rig-mask", o->rig_mask,
+                  "With --clean-plates, an image black where the rig covers every frame (as track --mask; "
+                  "the project's own, else the tracker's estimate alone)");
+  sub->add_flag("--blur-faces", o->blur_faces, "Blur the faces of people who remain in the keyframes");
   sub->add_flag("--json", o->json, "Machine-readable report");
   return {sub, [o]() {
-            const Project project = load_project(o->project);
+            Project project = load_project(o->project);
+            if (!o->rig_mask.empty()) project.capture.rig_mask = o->rig_mask;
             TourExportOptions options = TourExportOptions::from_project(project, o->out);
             if (o->max_size > 0) options.max_size = o->max_size;
             if (o->preview_size > 0) options.preview_size = o->preview_size;
@@ -42,7 +57,16 @@ Command add_export_command(CLI::App& parent) {
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
-            options.clean_plates = options.clean_plates || o->clean_plates;
+            KeyframeCleaning& cleaning = options.cleaning;
+            cleaning.clean_plates = cleaning.clean_plates || o->clean_plates;
+            cleaning.fill_rig = !o->no_rig_fill;
+            cleaning.blur_faces = cleaning.blur_faces || o->blur_faces;
+            if (o->nadir == "blur" || o->nadir == "none") {
+              cleaning.nadir.kind = enum_from_string<NadirPatch>(o->nadir);
+            } else if (!o->nadir.empty()) {
+              cleaning.nadir.kind = NadirPatch::kImage;
+              cleaning.nadir.image = read_nadir_image(o->nadir);
+            }
             ConsoleProgress progress("export");
             const TourExportReport report = export_tour(project, options, progress);
             progress.finish();
@@ -55,6 +79,9 @@ Command add_export_command(CLI::App& parent) {
                                           {"files", report.files.size()},
                                           {"clean_plates", report.clean_plates},
                                           {"replaced_pct", report.replaced_pct},
+                                          {"rig_pct", report.rig_pct},
+                                          {"rig_filled_pct", report.rig_filled_pct},
+                                          {"faces_blurred", report.faces_blurred},
                                           {"warnings", report.warnings}}
                                .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                         << "\n";

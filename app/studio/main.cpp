@@ -1,10 +1,11 @@
 // `plenopath-studio [PROJECT.plenopath] [--screenshot FILE.png] [--frame N|middle] [--look DEG] [--size WxH]
-//  [--compute-visibility] [--resample] [--autosave-seconds S]`: the editor.
+//  [--compute-visibility] [--resample] [--preview-clean-plate] [--autosave-seconds S]`: the editor.
 // --screenshot opens the project, waits until the panorama shows its frame, saves an image of the whole
 // window and exits (app/take-screenshot.sh uses it for the README).
 #include <QVTKOpenGLNativeWidget.h>
 #include <malloc.h>
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -89,7 +90,11 @@ int main(int argc, char** argv) {
                                               "After opening, compute visibility if the project has none.");
   const QCommandLineOption resample(QString("resample"),
                                     "After opening, sample keyframes if there are none.");
-  parser.addOptions({screenshot, frame, look, size, autosave_seconds, compute_visibility, resample});
+  const QCommandLineOption preview_clean_plate(
+      QString("preview-clean-plate"),
+      "After going to the frame, show its clean plate before/after (Process menu).");
+  parser.addOptions(
+      {screenshot, frame, look, size, autosave_seconds, compute_visibility, resample, preview_clean_plate});
   parser.process(app);
 
   plenopath::studio::MainWindow window;
@@ -131,6 +136,11 @@ int main(int argc, char** argv) {
   if (parser.isSet(look)) {
     auto* p = window.panorama_view();
     p->set_look(parser.value(look).toDouble() * M_PI / 180.0, p->elevation(), p->fov());
+  }
+  if (opened && parser.isSet(preview_clean_plate)) {
+    if (auto* action = window.findChild<QAction*>("preview_clean_plate")) action->trigger();
+    window.tasks().wait();
+    wait_until([&] { return window.panorama_view()->comparing(); }, 2000);
   }
   if (parser.isSet(screenshot)) {
     if (!opened) return 1;  // the error went to stderr

@@ -13,6 +13,7 @@
 #include <QMenuBar>
 #include <QMimeData>
 #include <QProgressBar>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSignalBlocker>
 #include <QSplitter>
@@ -34,6 +35,7 @@
 #include "app/studio/studio_tasks.h"
 #include "widgets/anchors_panel.h"
 #include "widgets/capture_import_dialog.h"
+#include "widgets/clean_plate_box.h"
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
 #include "widgets/frame_provider.h"
@@ -174,7 +176,12 @@ void MainWindow::create_docks() {
   auto* history = new QUndoView(document_->undo_stack(), this);
   history->setEmptyLabel(tr("<opened>"));
   dock(tr("Timeline"), "timeline_dock", timeline_, Qt::BottomDockWidgetArea);
-  QDockWidget* sampling = dock(tr("Sampling"), "sampling_dock", sampling_, Qt::RightDockWidgetArea);
+  // In a scroll area: the sampling controls and the clean-plate box need not fit a small window.
+  auto* sampling_scroll = new QScrollArea(this);
+  sampling_scroll->setWidget(sampling_);
+  sampling_scroll->setWidgetResizable(true);
+  sampling_scroll->setFrameShape(QFrame::NoFrame);
+  QDockWidget* sampling = dock(tr("Sampling"), "sampling_dock", sampling_scroll, Qt::RightDockWidgetArea);
   QDockWidget* layers = dock(tr("Layers"), "layers_dock", layers_, Qt::RightDockWidgetArea);
   QDockWidget* undo = dock(tr("History"), "history_dock", history, Qt::RightDockWidgetArea);
   anchors_ = new widgets::AnchorsPanel(*document_, this);
@@ -326,6 +333,15 @@ void MainWindow::create_actions() {
       tr("Bend the path onto the anchors with the global refinement (Ceres); one undo step"));
   new RefineWithAnchorsReaction(refine, *this);
   anchors_->set_refine_action(refine);
+  QAction* preview_clean = process->addAction(tr("Preview &clean plate"));
+  preview_clean->setObjectName("preview_clean_plate");
+  preview_clean->setShortcut(tr("Ctrl+Shift+L"));
+  preview_clean->setStatusTip(
+      tr("The frame on screen without the people and the rig, before/after in the panorama: drag the line, "
+         "Esc ends it"));
+  new PreviewCleanPlateReaction(preview_clean, *this);
+  connect(sampling_->clean_plate_box(), &widgets::CleanPlateBox::preview_requested, preview_clean,
+          &QAction::trigger);
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About"), this, [this] {

@@ -4,6 +4,7 @@
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QImage>
 #include <QMenu>
 #include <QMessageBox>
 #include <QSettings>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <opencv2/imgproc.hpp>
 
 #include "app/studio/main_window.h"
 #include "app/studio/placement_service.h"
@@ -23,6 +25,7 @@
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
 #include "widgets/map_view.h"
+#include "widgets/panorama_view.h"
 #include "widgets/project_document.h"
 #include "widgets/task_runner.h"
 #include "widgets/walk_view.h"
@@ -204,6 +207,60 @@ void PlacePathOnPlanReaction::on_triggered() {
   auto outcome = std::make_shared<PlacementOutcome>();
   if (window_.tasks().start(QObject::tr("Place path on plan"), place_path_on_plan_task(outcome)))
     offer_when_applied(window_, outcome);
+}
+
+PreviewCleanPlateReaction::PreviewCleanPlateReaction(QAction* action, MainWindow& window)
+    : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void PreviewCleanPlateReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  action()->setEnabled(!p.path.empty() && !p.capture.empty() && !window_.tasks().is_running());
+}
+
+void PreviewCleanPlateReaction::on_triggered() {
+  const int position = window_.document().current_position();
+  if (position < 0) return;
+  const int frame = window_.document().frame_index_at(position);
+  struct Preview {
+    QImage image;
+    QString label;
+  };
+  auto preview = std::make_shared<Preview>();
+  const bool started = window_.tasks().start(
+      QObject::tr("Preview clean plate"), [frame, preview](Project snapshot, Progress& progress) {
+        KeyframeCleaning cleaning = KeyframeCleaning::from_project(snapshot);
+        cleaning.clean_plates = true;  // the preview shows what the option would do
+        SubProgress opening(progress, 0.0, 0.15, "finding the rig");
+        KeyframeCleaner cleaner(snapshot, cleaning, opening);
+        SubProgress cleaning_progress(progress, 0.15, 1.0, "clean plate of frame " + std::to_string(frame));
+        const CleanedKeyframe cleaned = cleaner.clean(frame, cleaning_progress);
+        cv::Mat rgb;
+        cv::cvtColor(cleaned.image, rgb, cv::COLOR_BGR2RGB);
+        preview->image =
+            QImage(rgb.data, rgb.cols, rgb.rows, static_cast<int>(rgb.step), QImage::Format_RGB888).copy();
+        QString label =
+            QObject::tr("Clean plate · %1 % replaced").arg(100 * cleaned.plate.moving_share, 0, 'f', 1);
+        if (!cleaner.rig_mask().empty() || !cleaned.plate.rig_filled.empty())
+          label +=
+              QObject::tr(" · rig %1 % filled").arg(100 * (1 - cleaned.plate.rig_unfilled_share), 0, 'f', 0);
+        if (cleaning.blur_faces) label += QObject::tr(" · %n face(s) blurred", nullptr, cleaned.faces);
+        preview->label = label;
+        progress.report(1.0, label.toStdString());
+        return widgets::TaskResult{std::move(snapshot), 0};  // a preview changes nothing in the document
+      });
+  if (!started) return;
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection =
+      connect(&window_.tasks(), &widgets::TaskRunner::finished, this, [this, preview, position, connection] {
+        QObject::disconnect(*connection);
+        if (preview->image.isNull()) return;  // failed or cancelled: the runner said so
+        window_.panorama_view()->set_comparison(position, preview->image, preview->label);
+      });
 }
 
 RecentFilesMenu::RecentFilesMenu(QMenu* menu, MainWindow& window)

@@ -113,6 +113,18 @@ class PlacePathOnPlanReaction : public Reaction {
   void update_enabled();
 };
 
+// Process > Preview Clean Plate (and the sampling panel's button): the frame on screen as the tour would show
+// it with clean plates on (keyframe_cleaner.h, the project's tour settings), a task with progress and Cancel
+// that changes nothing; the panorama then shows it before/after, the split dragged, Esc ends it.
+class PreviewCleanPlateReaction : public Reaction {
+ public:
+  PreviewCleanPlateReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 // The File ▸ Open Recent menu, kept in QSettings ("recent_files").
 class RecentFilesMenu : public QObject {
   Q_OBJECT

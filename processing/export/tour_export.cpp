@@ -158,7 +158,7 @@ void TourExportOptions::check() const {
   if (preview_size < 64 || preview_size > max_size)
     throw Error("export: preview_size must be within 64..max_size pixels");
   if (jpeg_quality < 1 || jpeg_quality > 100) throw Error("export: jpeg_quality must be within 1..100");
-  if (clean_plates) clean_plate.check();
+  cleaning.check();
 }
 
 TourExportOptions TourExportOptions::from_project(const Project& project, const std::string& output) {
@@ -169,7 +169,7 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
   o.jpeg_quality = project.tour.jpeg_quality;
   o.pannellum = project.tour.export_pannellum;
   o.geojson = project.tour.export_geojson;
-  o.clean_plates = project.tour.export_clean_plates;
+  o.cleaning = KeyframeCleaning::from_project(project);
   return o;
 }
 
@@ -243,49 +243,12 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
 
   // Keyframe images, in progressive order so that a streaming reader gets the coarse tour first.
   report_progress(0.0, "opening capture");
-  std::unique_ptr<FrameSource> frames = FrameSource::open_capture(project.capture);
+  SubProgress opening(progress, 0.0, 0.05, "opening capture");
+  KeyframeCleaner cleaner(project, options.cleaning, opening);
+  FrameSource* frames = &cleaner.frames();
   const std::vector<int> order = project.keyframes.progressive_order();
-  // Clean plates: neighbours by path position, static depth from depth maps or rendered from the plan.
-  std::unique_ptr<SyntheticScene> plan_scene;
-  double replaced = 0;
-  auto capture_index = [&](int position) {
-    return project.path.frames[static_cast<std::size_t>(position)].index;
-  };
-  auto static_depth = [&](int position) -> cv::Mat {
-    const int index = capture_index(position);
-    if (index >= 0 && index < frames->frame_count() && frames->has_depth(index))
-      return frames->read_depth(index);
-    if (!plan_scene) {
-      SceneOptions scene;
-      scene.camera_height = project.capture.camera_height_m > 0 ? project.capture.camera_height_m : 1.6;
-      plan_scene = std::make_unique<SyntheticScene>(build_synthetic_scene(project.plan, scene));
-    }
-    RenderOptions render;
-    render.width = frames->width();
-    render.height = frames->height();
-    return render_panorama(*plan_scene, project.path.frames[static_cast<std::size_t>(position)], render)
-        .depth;
-  };
-  auto clean_keyframe = [&](int frame, double begin, double end) {
-    const int position = static_cast<int>(project.path.find_frame(frame) - project.path.frames.data());
-    SubProgress keyframe_progress(progress, begin, end, "clean plate of keyframe " + std::to_string(frame));
-    const CleanPlate plate = clean_plate(
-        project.path, position,
-        [&](int p) {
-          const int index = capture_index(p);
-          if (index < 0 || index >= frames->frame_count())
-            throw Error("export: frame " + std::to_string(index) + " is outside the capture");
-          return frames->read(index);
-        },
-        static_depth, options.clean_plate, keyframe_progress);
-    ++report.clean_plates;
-    replaced += plate.moving_share;
-    if (plate.unsupported_share > 0.2)
-      report.warnings.push_back("keyframe " + std::to_string(frame) + ": " +
-                                std::to_string(static_cast<int>(100 * plate.unsupported_share)) +
-                                " % of what moved was seen by no neighbour and stays as it was");
-    return plate.image;
-  };
+  report.rig_pct = cleaner.rig_pct();
+  double replaced = 0, rig_filled = 0;
   std::vector<KeyframeImageFiles> images;
   int full_width = 0, preview_width = 0;
   for (std::size_t i = 0; i < order.size(); ++i) {
@@ -296,9 +259,17 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     if (frame < 0 || frame >= frames->frame_count())
       throw Error("export: keyframe " + std::to_string(frame) + " is outside the capture (" +
                   std::to_string(frames->frame_count()) + " frames)");
-    const cv::Mat image = options.clean_plates ? clean_keyframe(frame, 0.05 + 0.8 * i / order.size(),
-                                                                0.05 + 0.8 * (i + 0.9) / order.size())
-                                               : frames->read(frame);
+    SubProgress keyframe_progress(progress, 0.05 + 0.8 * i / order.size(),
+                                  0.05 + 0.8 * (i + 0.9) / order.size(), "keyframe " + std::to_string(frame));
+    const CleanedKeyframe cleaned = cleaner.clean(frame, keyframe_progress);
+    const cv::Mat& image = cleaned.image;
+    if (cleaned.cleaned) {
+      ++report.clean_plates;
+      replaced += cleaned.plate.moving_share;
+      rig_filled += 1.0 - cleaned.plate.rig_unfilled_share;
+    }
+    report.faces_blurred += cleaned.faces;
+    report.warnings.insert(report.warnings.end(), cleaned.warnings.begin(), cleaned.warnings.end());
     full_width = std::min(options.max_size, image.cols) / 2 * 2;
     preview_width = std::min(options.preview_size, full_width) / 2 * 2;
     KeyframeImageFiles files;
@@ -319,7 +290,10 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     images.push_back(files);
   }
 
-  if (report.clean_plates > 0) report.replaced_pct = 100 * replaced / report.clean_plates;
+  if (report.clean_plates > 0) {
+    report.replaced_pct = 100 * replaced / report.clean_plates;
+    if (!cleaner.rig_mask().empty()) report.rig_filled_pct = 100 * rig_filled / report.clean_plates;
+  }
 
   // Hotspot media: copied under media/ with safe names. Problems (missing or undecodable media, inconsistent
   // quads, markup in text, unusable targets) are warnings, not failures: the author hears of each once.

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "model/project.h"
-#include "processing/cleanplate/clean_plate.h"
+#include "processing/export/keyframe_cleaner.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -27,12 +27,10 @@ struct TourExportOptions {
   // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
   // script holding it as a data URI. Off only for packages that will always be served over http.
   bool offline_images = true;
-  // Each keyframe as its clean plate (processing/cleanplate): the people who walked through replaced by
-  // what the neighbouring frames saw behind them. Static depth from the capture's depth maps, else from
-  // the plan (walls, pillars, furniture layers, floor and ceiling at the capture's camera height).
-  bool clean_plates = false;
-  CleanPlateOptions clean_plate;
+  // Each keyframe as the tour shows it (keyframe_cleaner.h): its clean plate, its faces blurred.
+  KeyframeCleaning cleaning;
   void check() const;  // throws Error naming the bad field
+  // The project's tour settings (the nadir image read here: Error naming it when unreadable).
   static TourExportOptions from_project(const Project& project, const std::string& output);
 };
 
@@ -45,6 +43,9 @@ struct TourExportReport {
   std::vector<std::string> warnings;  // e.g. missing hotspot media
   int clean_plates = 0;               // keyframes exported as clean plates
   double replaced_pct = 0.0;          // their mean share of pixels replaced
+  double rig_pct = 0.0;               // share of the image the rig covers (0: no rig found)
+  double rig_filled_pct = 0.0;        // mean share of the rig filled by what other frames saw behind it
+  int faces_blurred = 0;
 };
 
 // Throws Error with a clear message: no path or keyframes, unreadable frames, unwritable output, ...

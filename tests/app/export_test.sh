@@ -15,6 +15,12 @@ grep -q "no keyframes" "$tmp/err.txt" || fail "message: $(cat "$tmp/err.txt")"
 [[ $code -eq 1 ]] || fail "missing project: exit $code"
 grep -q "absent.plenopath" "$tmp/err.txt" || fail "missing project message: $(cat "$tmp/err.txt")"
 
+# A nadir image that is not there: the error names it, before any work.
+"$cli" export --project "$data/projects/minimal.plenopath" --out "$tmp/tour" --clean-plates \
+  --nadir "$tmp/no-logo.png" 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 1 ]] || fail "missing nadir image: exit $code"
+grep -q "no-logo.png" "$tmp/err.txt" || fail "nadir image message: $(cat "$tmp/err.txt")"
+
 "$cli" export --out "$tmp/tour" 2>/dev/null; code=$?
 [[ $code -eq 2 ]] || fail "missing --project: exit $code"
 "$cli" export --project x --out y --quality abc 2>/dev/null; code=$?

@@ -14,29 +14,16 @@
 
 #include "processing/cleanplate/clean_plate.h"
 #include "rig/synthetic_camera.h"
+#include "tests/bench/bench_common.h"
 #include "tests/processing/cleanplate/masked_psnr.h"
 
 using namespace plenopath;
+using namespace plenopath::bench;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-std::string first_line(const std::string& cmd) {
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[256];
-    if (std::fgets(buf, sizeof buf, p)) out = buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
-// JSON holds no infinity: 99 dB stands for identical.
 double psnr(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
-  return std::min(99.0, test::masked_psnr(a, b, mask));
+  return test::masked_psnr_capped(a, b, mask);
 }
 
 double baseline_seconds() {
@@ -82,19 +69,16 @@ int main() {
       // A first run renders the frames it asks for (cached); the second, timed, is the clean plate's alone.
       clean_plate(
           path, k, [&](int i) { return rendered(i, true).rgb; },
-          [&](int i) { return rendered(i, false).depth; });
+          [&](int i) { return rendered(i, false).depth; }, {});
       const auto t0 = Clock::now();
       const CleanPlate plate = clean_plate(
           path, k, [&](int i) { return rendered(i, true).rgb; },
-          [&](int i) { return rendered(i, false).depth; });
+          [&](int i) { return rendered(i, false).depth; }, {});
       const double seconds = seconds_since(t0);
       total_seconds += seconds;
       const cv::Mat& truth = rendered(k, false).rgb;
       const cv::Mat& original = rendered(k, true).rgb;
-      cv::Mat diff, people;
-      cv::absdiff(original, truth, diff);
-      cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
-      cv::threshold(diff, people, 8, 255, cv::THRESH_BINARY);
+      const cv::Mat people = test::differing_pixels(original, truth, 8);
       keyframes.push_back({{"keyframe", k},
                            {"people_pixels", cv::countNonZero(people)},
                            {"psnr_people_before_db", psnr(original, truth, people)},
@@ -108,14 +92,11 @@ int main() {
       people_cache.clear();  // the next keyframe is 2.4 m on: few frames in common
       clean_cache.clear();
     }
-    const nlohmann::json out = {{"benchmark", "clean_plate"},
-                                {"commit", first_line(std::string("git -C '") + PLENOPATH_SOURCE_DIR +
-                                                      "' rev-parse HEAD 2>/dev/null")},
-                                {"load_average", first_line("cat /proc/loadavg")},
-                                {"size", "2048x1024"},
-                                {"baseline_seconds", baseline},
-                                {"seconds_per_keyframe", total_seconds / keyframes.size()},
-                                {"keyframes", keyframes}};
+    const nlohmann::json out = {
+        {"benchmark", "clean_plate"},     {"commit", git_commit()},
+        {"load_average", load_average()}, {"size", "2048x1024"},
+        {"baseline_seconds", baseline},   {"seconds_per_keyframe", total_seconds / keyframes.size()},
+        {"keyframes", keyframes}};
     std::cout << out.dump() << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "bench_clean_plate: " << e.what() << "\n";

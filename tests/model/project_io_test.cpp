@@ -101,6 +101,10 @@ Project make_full_project(const fs::path& dir) {
   p.tour.jpeg_quality = 90;
   p.tour.export_geojson = true;
   p.tour.export_clean_plates = true;
+  p.tour.nadir_patch = NadirPatch::kImage;
+  p.tour.nadir_image = (dir / "media" / "logo.png").string();
+  p.tour.blur_faces = true;
+  p.capture.rig_mask = (dir / "frames" / "rig mask.png").string();
   return p;
 }
 

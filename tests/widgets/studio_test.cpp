@@ -6,6 +6,7 @@
 #include <QAbstractSlider>
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -37,6 +38,7 @@
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
+#include "widgets/clean_plate_box.h"
 #include "widgets/document_commands.h"
 #include "widgets/map_view.h"
 #include "widgets/panorama_view.h"
@@ -111,10 +113,95 @@ TEST(Studio, CleanPlatesAreATourSettingWithUndo) {
   EXPECT_FALSE(action->isChecked());
   action->trigger();
   EXPECT_TRUE(s.window.document().project().tour.export_clean_plates);
-  EXPECT_TRUE(TourExportOptions::from_project(s.window.document().project(), "out").clean_plates);
+  EXPECT_TRUE(TourExportOptions::from_project(s.window.document().project(), "out").cleaning.clean_plates);
   s.window.document().undo_stack()->undo();
   EXPECT_FALSE(s.window.document().project().tour.export_clean_plates);
   EXPECT_FALSE(action->isChecked());  // the menu follows the document
+}
+
+// The sampling panel's clean-plate box: each control one undo step of the tour settings, the box follows
+// the document, and an image nadir patch names its picture.
+TEST(Studio, CleanPlateOptionsInTheSamplingPanel) {
+  const auto& t = test_project("clean_plate_box");
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file)) << s.errors.join("\n").toStdString();
+  widgets::CleanPlateBox* box = s.window.sampling_panel()->clean_plate_box();
+  ASSERT_NE(box, nullptr);
+  QUndoStack* undo = s.window.document().undo_stack();
+  const int steps = undo->count();
+  box->clean_plates_box()->click();
+  EXPECT_TRUE(s.window.document().project().tour.export_clean_plates);
+  EXPECT_TRUE(s.window.findChild<QAction*>("export_clean_plates")->isChecked());  // the menu agrees
+  box->nadir_box()->setCurrentIndex(box->nadir_box()->findData("none"));
+  EXPECT_EQ(s.window.document().project().tour.nadir_patch, NadirPatch::kNone);
+  box->faces_box()->click();
+  EXPECT_TRUE(s.window.document().project().tour.blur_faces);
+  const QString logo = QFileInfo(t.project_file).absolutePath() + "/logo.png";
+  box->set_nadir_image(logo);
+  EXPECT_EQ(s.window.document().project().tour.nadir_patch, NadirPatch::kImage);
+  EXPECT_EQ(QString::fromStdString(s.window.document().project().tour.nadir_image),
+            QFileInfo(logo).absoluteFilePath());
+  EXPECT_EQ(box->nadir_box()->currentData().toString(), "image");
+  EXPECT_EQ(undo->count(), steps + 4);
+  box->set_rig_mask(QFileInfo(t.project_file).absolutePath() + "/rig.png");
+  EXPECT_EQ(QFileInfo(QString::fromStdString(s.window.document().project().capture.rig_mask)).fileName(),
+            "rig.png");
+  undo->undo();
+  EXPECT_TRUE(s.window.document().project().capture.rig_mask.empty());
+  undo->undo();
+  undo->undo();
+  EXPECT_FALSE(s.window.document().project().tour.blur_faces);
+  EXPECT_FALSE(box->faces_box()->isChecked());
+  EXPECT_EQ(box->nadir_box()->currentData().toString(), "none");
+}
+
+// Before/after in the panorama: right of the split the other image, left the frame; the split follows a
+// drag; Esc and another frame end it. Then Process > Preview clean plate computes one for the frame shown.
+TEST(Studio, PanoramaComparesBeforeAndAfter) {
+  const auto& t = test_project();
+  Studio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  s.window.document().set_current_position(5);
+  widgets::PanoramaView* pano = s.window.panorama_view();
+  ASSERT_TRUE(wait_until([&] { return pano->shown_position() == 5; }));
+  pano->set_look(0.0, 0.0, radians(90.0));
+  QImage magenta(t.project.capture.width, t.project.capture.height, QImage::Format_RGB32);
+  magenta.fill(QColor(255, 0, 255));
+  pano->set_comparison(5, magenta, "test");
+  ASSERT_TRUE(pano->comparing());
+  auto magenta_share = [&](double from, double to) {
+    const QImage view = pano->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+    int n = 0, all = 0;
+    for (int y = view.height() / 4; y < view.height() * 3 / 4; y += 2)
+      for (int x = static_cast<int>(from * view.width()); x < static_cast<int>(to * view.width()); x += 2) {
+        ++all;
+        n += near_colour(view.pixel(x, y), 255, 0, 255, 10);
+      }
+    return double(n) / std::max(1, all);
+  };
+  EXPECT_LT(magenta_share(0.05, 0.45), 0.02) << "left of the split: the frame";
+  EXPECT_GT(magenta_share(0.55, 0.95), 0.95) << "right of the split: the other image";
+  // Drag the split from the middle to a quarter of the width.
+  const QPoint middle(pano->width() / 2, pano->height() / 2), quarter(pano->width() / 4, pano->height() / 2);
+  QTest::mousePress(pano, Qt::LeftButton, Qt::NoModifier, middle);
+  QMouseEvent move(QEvent::MouseMove, quarter, Qt::LeftButton, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(pano, &move);
+  QTest::mouseRelease(pano, Qt::LeftButton, Qt::NoModifier, quarter);
+  EXPECT_NEAR(pano->comparison_split(), 0.25, 0.02);
+  EXPECT_GT(magenta_share(0.30, 0.45), 0.95);
+  QTest::keyClick(pano, Qt::Key_Escape);
+  EXPECT_FALSE(pano->comparing());
+  EXPECT_LT(magenta_share(0.30, 0.95), 0.02);
+
+  QAction* preview = s.window.findChild<QAction*>("preview_clean_plate");
+  ASSERT_NE(preview, nullptr);
+  ASSERT_TRUE(preview->isEnabled());
+  preview->trigger();
+  ASSERT_TRUE(wait_until([&] { return pano->comparing(); }, 60000)) << s.errors.join("\n").toStdString();
+  EXPECT_FALSE(s.window.tasks().is_running());
+  EXPECT_EQ(s.window.document().current_position(), 5);
+  s.window.document().set_current_position(6);
+  EXPECT_FALSE(pano->comparing()) << "another frame ends the comparison";
 }
 
 TEST(Studio, MapShowsTheEnvelopeOfTheCurrentFrame) {

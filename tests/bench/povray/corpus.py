@@ -49,6 +49,9 @@ WIDTH, HEIGHT = 1024, 512
 # Nuisances (post-processing of each frame): exposure drift amplitude, exposure jumps [(first, last, gain)],
 # exposure per still (gain exp(u * amplitude), u uniform in [-1, 1] per frame: auto-exposure shot to shot),
 # Gaussian noise (ImageMagick -attenuate), JPEG quality (None: PNG).
+# Clean-plate scenes (issue 24) have "truth_variants": every `every`-th frame rendered again with `declares`
+# (the people, or the people and the rig, left out) into `folder`, with the same nuisances: the truth of a
+# clean plate.
 # Stills scenes (issue 20) have "stills" instead of a walk: tripod positions in capture order, each with a
 # random heading (seeded), and their own "size" (default 1024x512).
 SCENES = {
@@ -77,6 +80,21 @@ SCENES = {
         },
         "nuisances": {"exposure_drift": 0.12, "exposure_jumps": [(60, 95, 1.2), (210, 240, 0.7)],
                       "noise": 0.5, "jpeg_quality": 82},
+    },
+    "people": {
+        "pov": "corridor.pov",
+        "camera_height": 1.5,
+        "description": "trolley walk along two legs of the corridor loop as three people walk past, towards "
+                       "and away from the camera; operator and trolley in every frame, auto-exposure drift, "
+                       "PNG; every 20th frame rendered again without people, operator and trolley",
+        "walk": {
+            "waypoints": [(12.0, 1.1), (30.9, 1.1), (30.9, 9.0)],
+            "corner_radius": 0.7, "step": (0.12, 0.15, 0.18), "speed_wobble": 0.15, "lateral": 0.03,
+            "heading_wobble": 0.8, "shake": 0.0, "dt": 0.2, "seed": 5,
+        },
+        "nuisances": {"exposure_drift": 0.12},
+        "truth_variants": [{"declares": ["Declare=NoPeople=1", "Declare=NoRig=1"], "every": 20, "folder": "clean"},
+                           {"declares": ["Declare=NoPeople=1"], "every": 20, "folder": "no_people"}],
     },
     "gallery": {
         "pov": "gallery.pov",
@@ -362,6 +380,12 @@ def truth_for(scene):
         truth["frames"].append({"index": i, "file": "frames/%06d.%s" % (i, ext), "x": round(f["x"], 6),
                                 "y": round(f["y"], 6), "heading_deg": round(f["heading_deg"], 6),
                                 "pitch_deg": round(f["pitch_deg"], 4), "roll_deg": round(f["roll_deg"], 4)})
+    if spec.get("truth_variants"):
+        truth["truth_variants"] = {
+            v["folder"]: {"declares": v["declares"],
+                          "frames": [{"index": i, "file": "%s/%06d.%s" % (v["folder"], i, ext)}
+                                     for i in range(0, len(frames), v["every"])]}
+            for v in spec["truth_variants"]}
     length = sum(math.dist((a["x"], a["y"]), (b["x"], b["y"])) for a, b in zip(frames, frames[1:]))
     truth["length_m"] = round(length, 3)
     return truth
@@ -382,7 +406,7 @@ def scene_hash(scene):
     spec = SCENES[scene]
     h = hashlib.sha256()
     h.update(("version %s %dx%d\n" % ((SCRIPT_VERSION,) + scene_size(spec))).encode())
-    keys = ("camera_height", "walk", "nuisances") + (("stills",) if "stills" in spec else ())
+    keys = ("camera_height", "walk", "nuisances") + tuple(k for k in ("stills", "truth_variants") if k in spec)
     h.update(json.dumps({k: spec[k] for k in keys}, sort_keys=True).encode())
     for f in scene_files(spec["pov"]):
         h.update(f.encode())
@@ -484,13 +508,18 @@ def ensure(scene, quiet=False):
         remove_strays(d)
         return d
     frames = truth["frames"]
-    missing = [f for f in frames if not os.path.exists(os.path.join(d, f["file"]))]
+    # A truth variant's frames are jobs like the others: the walk's pose, more declares, another folder.
+    jobs = [(f, f["file"], []) for f in frames]
+    for folder, variant in truth.get("truth_variants", {}).items():
+        os.makedirs(os.path.join(d, folder), exist_ok=True)
+        jobs += [(frames[v["index"]], v["file"], variant["declares"]) for v in variant["frames"]]
+    missing = [j for j in jobs if not os.path.exists(os.path.join(d, j[1]))]
     if missing:
         w, h = scene_size(spec)
         per_frame = 3 * w * h // (1024 * 512)
-        log("%s: rendering %d of %d frames into %s (%dx%d, one thread at nice 19: about %d CPU-seconds a "
+        log("%s: rendering %d of %d images into %s (%dx%d, one thread at nice 19: about %d CPU-seconds a "
             "frame, about %d min on an idle core, much longer on a busy machine)" %
-            (scene, len(missing), len(frames), d, w, h, per_frame, max(1, len(missing) * per_frame // 60)))
+            (scene, len(missing), len(jobs), d, w, h, per_frame, max(1, len(missing) * per_frame // 60)))
     nuis = spec["nuisances"]
     t0 = time.time()
     stats_file = os.path.join(d, "render_seconds.json")
@@ -498,14 +527,14 @@ def ensure(scene, quiet=False):
     # Frames are claimed one by one (a .claim file), so that two renders of the same scene (say `make bench`
     # and a `corpus.py render` in another shell, or two on a multi-core machine) share the work.
     n = 0
-    for f in missing:
+    for f, file, extra_declares in missing:
         i = f["index"]
-        out = os.path.join(d, f["file"])
+        out = os.path.join(d, file)
         claim = out + ".claim"
         if os.path.exists(out) or not take_claim(claim):
             continue
         try:
-            declares = camera_declares(f, spec["camera_height"], i, spec["walk"]["dt"])
+            declares = camera_declares(f, spec["camera_height"], i, spec["walk"]["dt"]) + extra_declares
             t1 = time.time()
             if nuis:
                 raw = os.path.join(d, "raw-%06d.png" % i)
@@ -514,24 +543,24 @@ def ensure(scene, quiet=False):
                 os.remove(raw)
             else:
                 render_frame(spec["pov"], out, declares, *scene_size(spec))
-            stats[str(i)] = round(time.time() - t1, 2)
+            stats[file] = round(time.time() - t1, 2)
         finally:
             os.remove(claim)
         n += 1
         if n % 20 == 0:
             save_stats(stats_file, stats)
             el = time.time() - t0
-            left = sum(1 for g in frames if not os.path.exists(os.path.join(d, g["file"])))
+            left = sum(1 for j in jobs if not os.path.exists(os.path.join(d, j[1])))
             log("%s: %d frames rendered here in %.0f s; %d left in the scene" % (scene, n, el, left))
     save_stats(stats_file, stats)
     # Wait for frames that another process is rendering.
     while True:
-        left = [g for g in frames if not os.path.exists(os.path.join(d, g["file"]))]
+        left = [j[1] for j in jobs if not os.path.exists(os.path.join(d, j[1]))]
         if not left:
             break
-        if not any(os.path.exists(os.path.join(d, g["file"]) + ".claim") for g in left):
+        if not any(os.path.exists(os.path.join(d, file) + ".claim") for file in left):
             raise RuntimeError("%s: %d frames neither rendered nor being rendered (e.g. %s)" %
-                               (scene, len(left), left[0]["file"]))
+                               (scene, len(left), left[0]))
         time.sleep(5)
     stats.update(json.load(open(stats_file)) if os.path.exists(stats_file) else {})
     remove_strays(d)

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model/error.h"
+#include "processing/egomotion/static_mask.h"
 #include "rig/synthetic_camera.h"
 #include "tests/processing/cleanplate/masked_psnr.h"
 
@@ -59,15 +60,12 @@ TEST(CleanPlate, PeopleWalkingThroughAreReplacedByWhatIsBehindThem) {
   int keyframes_with_people = 0;
   for (int k : {20, 40, 60}) {
     const CleanPlate plate = clean_plate(
-        walk.path, k, [&](int i) { return walk.rendered(i, true).rgb; },
-        [&](int i) { return walk.depth(i); });
+        walk.path, k, [&](int i) { return walk.rendered(i, true).rgb; }, [&](int i) { return walk.depth(i); },
+        {});
     const cv::Mat& truth = walk.rendered(k, false).rgb;
     const cv::Mat& original = walk.rendered(k, true).rgb;
     // Where the people are in the keyframe: it differs from the render without them.
-    cv::Mat diff, people;
-    cv::absdiff(original, truth, diff);
-    cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
-    cv::threshold(diff, people, 8, 255, cv::THRESH_BINARY);
+    const cv::Mat people = test::differing_pixels(original, truth, 8);
     const int people_px = cv::countNonZero(people);
     const double before = masked_psnr(original, truth, people),
                  after = masked_psnr(plate.image, truth, people);
@@ -94,25 +92,75 @@ TEST(CleanPlate, PeopleWalkingThroughAreReplacedByWhatIsBehindThem) {
 TEST(CleanPlate, AWalkWithoutPeopleStaysAsItWas) {
   Walk walk(60, 0);
   const CleanPlate plate = clean_plate(
-      walk.path, 30, [&](int i) { return walk.rendered(i, false).rgb; },
-      [&](int i) { return walk.depth(i); });
+      walk.path, 30, [&](int i) { return walk.rendered(i, false).rgb; }, [&](int i) { return walk.depth(i); },
+      {});
   EXPECT_LT(plate.moving_share, 0.002);
   EXPECT_GE(masked_psnr(plate.image, walk.rendered(30, false).rgb, {}), 45.0);
+}
+
+// The trolley and the operator, in every frame: the rig mask is the tracker's own estimate (the static
+// mask of the first 60 frames, inverted); the depth is the capture's depth map, which sees the rig; the
+// truth is the same walk rendered without them.
+TEST(CleanPlate, TheTrolleyAndOperatorAreFilledFromFramesFurtherAlong) {
+  Walk walk(150, 0);
+  walk.with_people.trolley = walk.with_people.operator_person = true;
+  StaticMaskEstimator estimator{StaticMaskOptions{}};
+  for (int i = 0; i < 60 && !estimator.ready(); ++i) estimator.add(walk.rendered(i, true).rgb);
+  const cv::Mat usable = estimator.mask(walk.rendered(0, true).rgb.size());
+  ASSERT_FALSE(usable.empty()) << "the static mask should find the rig";
+  const cv::Mat rig_mask = usable == 0;
+  CleanPlateOptions options;
+  options.camera_height_m = SceneOptions{}.camera_height;
+  double worst_filled = INFINITY, worst_elsewhere = INFINITY, least_filled_share = 1;
+  for (int k : {60, 100}) {
+    const CleanPlate plate = clean_plate(
+        walk.path, k, [&](int i) { return walk.rendered(i, true).rgb; },
+        [&](int i) {
+          cv::Mat d;
+          walk.rendered(i, true).depth.convertTo(d, CV_32F);
+          return d;
+        },
+        rig_mask, options);
+    const cv::Mat& truth = walk.rendered(k, false).rgb;
+    const cv::Mat& original = walk.rendered(k, true).rgb;
+    const cv::Mat rig_truth = test::differing_pixels(original, truth, 8);
+    const cv::Mat filled = rig_truth & plate.rig_filled;
+    const double filled_share = double(cv::countNonZero(filled)) / cv::countNonZero(rig_truth);
+    const double psnr_filled = masked_psnr(plate.image, truth, filled);
+    cv::Mat near_rig;
+    cv::dilate(rig_truth, near_rig, cv::Mat(), cv::Point(-1, -1), 2);
+    const double elsewhere = masked_psnr(plate.image, truth, ~near_rig);
+    std::printf(
+        "keyframe %d: rig %.1f %% of the image (mask %.1f %%), %.1f %% of it filled at %.1f dB (before %.1f "
+        "dB); "
+        "%.1f %% of the mask unfilled; elsewhere %.1f dB; %zu rig neighbours\n",
+        k, 100.0 * cv::countNonZero(rig_truth) / rig_truth.total(), 100 * plate.rig_share, 100 * filled_share,
+        psnr_filled, masked_psnr(original, truth, filled), 100 * plate.rig_unfilled_share, elsewhere,
+        plate.rig_neighbours_used.size());
+    worst_filled = std::min(worst_filled, psnr_filled);
+    worst_elsewhere = std::min(worst_elsewhere, elsewhere);
+    least_filled_share = std::min(least_filled_share, filled_share);
+    EXPECT_EQ(cv::countNonZero(plate.rig_filled & plate.rig_unfilled), 0);
+  }
+  EXPECT_GE(worst_filled, 25.0);
+  EXPECT_GE(least_filled_share, 0.5);
+  EXPECT_GE(worst_elsewhere, 35.0);
 }
 
 TEST(CleanPlate, BadInputIsAClearError) {
   Walk walk(20, 0);
   auto image = [&](int i) { return walk.rendered(i, false).rgb; };
   auto depth = [&](int i) { return walk.depth(i); };
-  EXPECT_THROW(clean_plate(walk.path, 99, image, depth), Error);
-  EXPECT_THROW(clean_plate(walk.path, 5, image, [](int) { return cv::Mat(); }), Error);
+  EXPECT_THROW(clean_plate(walk.path, 99, image, depth, {}), Error);
+  EXPECT_THROW(clean_plate(walk.path, 5, image, [](int) { return cv::Mat(); }, {}), Error);
+  EXPECT_THROW(clean_plate(walk.path, 5, image, depth, cv::Mat(10, 10, CV_8U, cv::Scalar(255))), Error);
   CleanPlateOptions o;
   o.max_baseline_m = 0.1;
   EXPECT_THROW(o.check(), Error);
   struct CancelAtOnce : CancellableProgress {
     void report(double, const std::string&) override { cancel(); }
   } cancel;
-  EXPECT_THROW(clean_plate(walk.path, 10, image, depth, {}, cancel), Cancelled);
+  EXPECT_THROW(clean_plate(walk.path, 10, image, depth, {}, {}, cancel), Cancelled);
 }
 
 }  // namespace

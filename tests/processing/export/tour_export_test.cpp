@@ -340,7 +340,7 @@ TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
   options.output = (dir / "tour").string();
   options.max_size = render.width;
   options.jpeg_quality = 98;
-  options.clean_plates = true;
+  options.cleaning.clean_plates = true;
   const TourExportReport report = export_tour(p, options);
   EXPECT_EQ(report.clean_plates, 1);
   EXPECT_GT(report.replaced_pct, 0.5);
@@ -348,16 +348,81 @@ TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
   ASSERT_FALSE(exported.empty());
   const cv::Mat original = render_panorama(scene, walk.frames[key], render).rgb;
   const cv::Mat truth = render_panorama(scene, walk.frames[key], without).rgb;
-  cv::Mat diff, people;
-  cv::absdiff(original, truth, diff);
-  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
-  cv::threshold(diff, people, 8, 255, cv::THRESH_BINARY);
+  const cv::Mat people = test::differing_pixels(original, truth, 8);
   ASSERT_GT(cv::countNonZero(people), 500) << "the keyframe should show people";
   auto psnr = [&](const cv::Mat& a) { return test::masked_psnr(a, truth, people); };
   std::printf("people pixels %d: PSNR %.1f dB in the frame, %.1f dB exported; %.2f %% replaced\n",
               cv::countNonZero(people), psnr(original), psnr(exported), report.replaced_pct);
   EXPECT_GT(psnr(exported), psnr(original) + 12.0);
   fs::remove_all(dir);
+}
+
+// export --clean-plates on a trolley capture: the rig (found by the tracker's static mask over the first
+// frames) is filled from frames further along, what none saw gets the author's nadir image, and the rig
+// filled matches the same walk rendered without trolley and operator.
+TEST(TourExportCleanPlates, TheRigIsFilledAndTheNadirPatched) {
+  const fs::path dir = fs::temp_directory_path() / ("plenopath_rig_export_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  Project p;
+  p.plan = make_office_sample_plan();
+  AutoWalkOptions walk_options;
+  walk_options.max_frames = 110;
+  walk_options.seed = 3;
+  CameraPath walk = auto_walk(p.plan, walk_options);
+  const SyntheticScene scene = build_synthetic_scene(p.plan);
+  RenderOptions render;
+  render.width = 1024;
+  render.height = 512;
+  render.depth = false;
+  render.trolley = render.operator_person = true;
+  RenderOptions without = render;
+  without.trolley = without.operator_person = false;
+  write_rendered_capture(dir, scene, render, &walk, &p);
+  p.capture.camera_height_m = SceneOptions{}.camera_height;
+  const int key = 60;
+  p.keyframes.indices = {key};
+  p.keyframes.rank = {0};
+  p.tour.export_clean_plates = true;
+  p.tour.nadir_patch = NadirPatch::kImage;
+  p.tour.nadir_image = (dir / "logo.png").string();
+  cv::imwrite(p.tour.nadir_image, cv::Mat(64, 64, CV_8UC3, cv::Scalar(255, 0, 255)));  // magenta
+  TourExportOptions options = TourExportOptions::from_project(p, (dir / "tour").string());
+  options.max_size = render.width;
+  options.jpeg_quality = 98;
+  const TourExportReport report = export_tour(p, options);
+  EXPECT_GT(report.rig_pct, 10.0);
+  EXPECT_GT(report.rig_filled_pct, 60.0);
+  const cv::Mat exported = cv::imread((dir / "tour" / "images" / "k000060_full.jpg").string());
+  ASSERT_FALSE(exported.empty());
+  const cv::Mat original = render_panorama(scene, walk.frames[key], render).rgb;
+  const cv::Mat truth = render_panorama(scene, walk.frames[key], without).rgb;
+  const cv::Mat rig = test::differing_pixels(original, truth, 8);
+  // The nadir image is a disc of at most 40 deg round the nadir (rows below 0.78 h); above it, most of the
+  // rig (the operator, the trolley's handle) now looks like the scene behind it.
+  const int disc_top = static_cast<int>(0.78 * exported.rows);
+  cv::Mat now_diff, scene_now;
+  cv::absdiff(exported, truth, now_diff);
+  cv::cvtColor(now_diff, now_diff, cv::COLOR_BGR2GRAY);
+  cv::threshold(now_diff, scene_now, 24, 255, cv::THRESH_BINARY_INV);
+  cv::Mat rig_above = rig.clone();
+  rig_above.rowRange(disc_top, rig.rows).setTo(0);
+  const cv::Mat filled = rig_above & scene_now;
+  const double filled_share = double(cv::countNonZero(filled)) / cv::countNonZero(rig_above);
+  std::printf(
+      "rig %.1f %% of the image (report %.1f %%, %.1f %% filled); above the disc %.1f %% of the rig now "
+      "the scene, at %.1f dB\n",
+      100.0 * cv::countNonZero(rig) / rig.total(), report.rig_pct, report.rig_filled_pct, 100 * filled_share,
+      test::masked_psnr(exported, truth, filled));
+  EXPECT_GT(filled_share, 0.6);
+  // The patch: the author's magenta all round the nadir, and nowhere above the disc.
+  cv::Mat magenta, scene_magenta;
+  cv::inRange(exported, cv::Scalar(200, 0, 200), cv::Scalar(255, 60, 255), magenta);
+  cv::inRange(truth, cv::Scalar(180, 0, 180), cv::Scalar(255, 80, 255), scene_magenta);  // posters
+  cv::dilate(scene_magenta, scene_magenta, cv::Mat(), cv::Point(-1, -1), 2);
+  magenta &= ~scene_magenta;
+  EXPECT_GT(cv::countNonZero(magenta.row(exported.rows - 1)), exported.cols * 9 / 10);
+  EXPECT_EQ(cv::countNonZero(magenta.rowRange(0, disc_top - 2)), 0);
+  if (!std::getenv("PLENOPATH_KEEP_TEST_OUTPUT")) fs::remove_all(dir);
 }
 
 TEST(TourInterop, PannellumLinksPointAtTheNeighbours) {

@@ -91,12 +91,16 @@ box { P(2.15, 14.0, 0.9), P(2.4, 14.6, 1.4) pigment { rgb <0.9, 0.9, 0.85> } }  
 #for (K, 0, 3) Lamp(30.9, 3.5 + K * 4.3, false) Lamp(1.1, 4 + K * 4.3, false) #end
 light_source { P(16, 10, 30), rgb 0.15 shadowless }  // a little sky through nothing: fill
 
-// three people walking
+// three people walking (NoPeople=1: the same walk without them, the truth of a clean plate)
+#ifndef (NoPeople)
 Walker(17.0, 0.45, 28.5, 0.45, 1.3, 0, rgb <0.2, 0.3, 0.6>, rgb 0.15)
 Walker(30.25, 4.0, 30.25, 16.0, 1.2, 3, rgb <0.7, 0.2, 0.2>, rgb <0.2, 0.2, 0.3>)
 Walker(27.0, 19.55, 15.0, 19.55, 1.4, 10, rgb <0.9, 0.8, 0.3>, rgb <0.3, 0.25, 0.2>)
+#end
 
-// the trolley and its operator, in the camera frame (x right, y up, z forward; floor at y = -1.5)
+// the trolley and its operator, in the camera frame (x right, y up, z forward; floor at y = -1.5);
+// NoRig=1: without them (what the camera would see of the floor and walls behind them)
+#ifndef (NoRig)
 union {
   union {
     cylinder { <0, -0.15, 0>, <0, -1.33, 0>, 0.02 }                                       // mast
@@ -116,3 +120,4 @@ union {
     translate <0, -1.5, -0.78> }
   transform { CamMatrix }
 }
+#end
