@@ -93,13 +93,23 @@ bool operator==(const GeoAnchor& l, const GeoAnchor& r) {
                                              r.plan_rotation, r.scale, r.plan_origin);
 }
 
+bool operator==(const CleanPlateEdit& l, const CleanPlateEdit& r) {
+  return l.frame == r.frame && l.mask == r.mask;
+}
+
+const CleanPlateEdit* TourSettings::clean_plate_edit(int frame) const {
+  for (const CleanPlateEdit& e : clean_plate_edits)
+    if (e.frame == frame) return &e;
+  return nullptr;
+}
+
 bool operator==(const TourSettings& l, const TourSettings& r) {
   return std::tie(l.title, l.description, l.max_size, l.preview_size, l.jpeg_quality, l.start_frame,
                   l.export_pannellum, l.export_geojson, l.export_clean_plates, l.nadir_patch, l.nadir_image,
-                  l.blur_faces) == std::tie(r.title, r.description, r.max_size, r.preview_size,
-                                            r.jpeg_quality, r.start_frame, r.export_pannellum,
-                                            r.export_geojson, r.export_clean_plates, r.nadir_patch,
-                                            r.nadir_image, r.blur_faces);
+                  l.blur_faces, l.clean_plate_edits) ==
+         std::tie(r.title, r.description, r.max_size, r.preview_size, r.jpeg_quality, r.start_frame,
+                  r.export_pannellum, r.export_geojson, r.export_clean_plates, r.nadir_patch, r.nadir_image,
+                  r.blur_faces, r.clean_plate_edits);
 }
 
 bool operator==(const Project& l, const Project& r) {

@@ -345,6 +345,12 @@ json tour_to_json(const TourSettings& t, const std::string& base) {
               {"nadir_patch", to_string(t.nadir_patch)},
               {"blur_faces", t.blur_faces}};
   if (!t.nadir_image.empty()) out["nadir_image"] = path_relative_to(t.nadir_image, base);
+  if (!t.clean_plate_edits.empty()) {
+    json edits = json::array();
+    for (const CleanPlateEdit& e : t.clean_plate_edits)
+      edits.push_back({{"frame", e.frame}, {"mask", path_relative_to(e.mask, base)}});
+    out["clean_plate_edits"] = edits;
+  }
   return out;
 }
 
@@ -363,6 +369,15 @@ TourSettings tour_from_json(const JsonReader& r, const std::string& base) {
   t.nadir_patch = enum_from_json(r, "nadir_patch", t.nadir_patch);
   t.nadir_image = path_resolved_against(r.string_or("nadir_image", ""), base);
   t.blur_faces = r.boolean_or("blur_faces", t.blur_faces);
+  if (auto edits = r.find("clean_plate_edits"))
+    for (std::size_t i = 0; i < edits->size(); ++i) {
+      const JsonReader e = edits->at(i);
+      CleanPlateEdit edit;
+      edit.frame = e.integer("frame");
+      edit.mask = path_resolved_against(e.string("mask"), base);
+      if (t.clean_plate_edit(edit.frame)) e.at("frame").fail("has a second clean-plate edit");
+      t.clean_plate_edits.push_back(edit);
+    }
   return t;
 }
 

@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "model/camera_path.h"
+#include "model/tour_settings.h"
 #include "rig/spherical.h"
 #include "widgets/frame_provider.h"
 #include "widgets/fullscreen_triangle.h"
@@ -175,6 +176,7 @@ void PanoramaView::set_comparison(int position, const QImage& after, const QStri
   comparison_position_ = position;
   comparison_label_ = label;
   pending_after_ = after;
+  comparison_size_ = after.size();
   if (document_.current_position() != position) document_.set_current_position(position);
   emit comparison_changed(true);
   update();
@@ -288,6 +290,14 @@ void PanoramaView::draw_overlay() {
     painter.setPen(Qt::white);
     painter.drawText(left_label, Qt::AlignCenter, left_text);
     painter.drawText(right_label, Qt::AlignCenter, comparison_label_);
+    // The stroke being painted: red for away, green for back.
+    if (paint_value_) {
+      painter.setPen(Qt::NoPen);
+      painter.setBrush(paint_value_ == kCleanPlateKeep ? QColor(60, 200, 90, 110) : QColor(230, 60, 60, 110));
+      const double r = equirect_mode_ ? 2.5 / 360.0 * image_box().width()
+                                      : std::tan(2.5 * M_PI / 180) * 0.5 * width() / std::tan(0.5 * fov_);
+      for (const QPointF& p : stroke_points_) painter.drawEllipse(p, r, r);
+    }
     painter.setFont(QFont());
   }
 
@@ -359,8 +369,45 @@ std::optional<QPointF> PanoramaView::widget_point_of(const SphericalAngles& dire
   return QPointF((sx * 0.5 + 0.5) * width(), (0.5 - sy * 0.5) * height());
 }
 
+// A round brush of 2.5 deg on the sphere: wider in the equirect image away from the horizon, across the seam.
+void PanoramaView::paint_at(const QPointF& widget_point) {
+  // A fast drag skips: fill in the line from the last point in steps of a few pixels.
+  if (!stroke_points_.empty()) {
+    const QPointF from = stroke_points_.back(), step = widget_point - from;
+    const int steps = static_cast<int>(std::hypot(step.x(), step.y()) / 3.0);
+    for (int i = 1; i < steps; ++i) paint_dab(from + step * (double(i) / steps));
+  }
+  paint_dab(widget_point);
+  stroke_points_.push_back(widget_point);
+  update();
+}
+
+void PanoramaView::paint_dab(const QPointF& widget_point) {
+  const std::optional<SphericalAngles> direction = direction_at(widget_point);
+  if (!direction || stroke_.isNull()) return;
+  const int w = stroke_.width(), h = stroke_.height();
+  const Eigen::Vector2d centre = angles_to_equirect(*direction, w, h);
+  const double radius = 2.5 / 360.0 * w;
+  const double stretch = 1.0 / std::max(0.1, std::cos(direction->elevation));
+  QPainter painter(&stroke_);
+  painter.setRenderHint(QPainter::Antialiasing, false);
+  painter.setPen(Qt::NoPen);
+  painter.setBrush(Qt::white);
+  for (int shift : {-w, 0, w})
+    painter.drawEllipse(QPointF(centre.x() + shift, centre.y()), radius * stretch, radius);
+}
+
 void PanoramaView::mousePressEvent(QMouseEvent* event) {
   last_mouse_ = event->pos();
+  if (comparing() && event->button() == Qt::LeftButton && (event->modifiers() & Qt::ControlModifier) &&
+      comparison_size_.isValid()) {
+    paint_value_ = (event->modifiers() & Qt::ShiftModifier) ? kCleanPlateKeep : kCleanPlateRemove;
+    stroke_ = QImage(comparison_size_, QImage::Format_Grayscale8);
+    stroke_.fill(0);
+    stroke_points_.clear();
+    paint_at(event->pos());
+    return;
+  }
   if (comparing() && event->button() == Qt::LeftButton &&
       std::abs(event->pos().x() - split_ * width()) <= 8) {
     dragging_split_ = true;
@@ -370,6 +417,14 @@ void PanoramaView::mousePressEvent(QMouseEvent* event) {
 }
 
 void PanoramaView::mouseReleaseEvent(QMouseEvent* event) {
+  if (paint_value_) {
+    const int value = paint_value_;
+    paint_value_ = 0;
+    stroke_points_.clear();
+    emit stroke_painted(comparison_position_, stroke_, value);
+    update();
+    return;
+  }
   if (dragging_split_) {
     dragging_split_ = false;
     return;
@@ -382,6 +437,10 @@ void PanoramaView::mouseDoubleClickEvent(QMouseEvent* event) {
 }
 
 void PanoramaView::mouseMoveEvent(QMouseEvent* event) {
+  if (paint_value_) {
+    paint_at(event->pos());
+    return;
+  }
   if (dragging_split_) {
     set_comparison_split(event->pos().x() / static_cast<double>(std::max(1, width())));
     return;

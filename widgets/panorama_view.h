@@ -4,13 +4,16 @@
 // Drag to look around, wheel to change the field of view, Left/Right (or PageUp/PageDown) to step frames,
 // E to toggle the whole equirectangular image with the hotspots outlined. A comparison (the clean plate of
 // the shown frame) splits the view: left of a vertical line the frame as captured, right of it the other
-// image, the line dragged with the mouse; Esc or another frame ends it. Hotspot authoring (new quads,
+// image, the line dragged with the mouse; Esc or another frame ends it. Ctrl+drag paints the clean plate
+// away (take what other frames saw), Ctrl+Shift+drag paints it back (keep as captured): each stroke arrives
+// as stroke_painted, a mask of the frame's size. Hotspot authoring (new quads,
 // handles, Delete, Esc) and the hotspot overlay live in HotspotEditor (widgets/hotspot_editor.h).
 #include <QImage>
 #include <QOpenGLFunctions>
 #include <QOpenGLWidget>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "rig/spherical.h"
 
@@ -62,6 +65,9 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   void image_shown(int position);
   void equirect_mode_changed(bool whole_image);
   void comparison_changed(bool comparing);
+  // A finished stroke on the comparison: `mask` (Grayscale8, the frame's size) is 255 where painted;
+  // `value` is what those pixels mean (kCleanPlateRemove or kCleanPlateKeep, model/tour_settings.h).
+  void stroke_painted(int position, const QImage& mask, int value);
 
  protected:
   void initializeGL() override;
@@ -91,7 +97,13 @@ class PanoramaView : public QOpenGLWidget, protected QOpenGLFunctions {
   QString comparison_label_;
   double split_ = 0.5;
   bool dragging_split_ = false;
-  QImage pending_image_;  // uploaded at the next paint
+  int paint_value_ = 0;                         // the stroke being painted (0: none)
+  QImage stroke_;                               // its mask, the frame's size
+  QSize comparison_size_;                       // the frame's size
+  std::vector<QPointF> stroke_points_;          // widget points, drawn while painting
+  void paint_at(const QPointF& widget_point);   // the stroke on to here
+  void paint_dab(const QPointF& widget_point);  // one brush mark
+  QImage pending_image_;                        // uploaded at the next paint
   QSize texture_size_;
   int pending_position_ = -1;
   int shown_position_ = -1;

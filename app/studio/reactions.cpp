@@ -1,6 +1,7 @@
 #include "app/studio/reactions.h"
 
 #include <QAction>
+#include <QDateTime>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -214,7 +215,53 @@ PreviewCleanPlateReaction::PreviewCleanPlateReaction(QAction* action, MainWindow
   connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
   connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
   connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  connect(window.panorama_view(), &widgets::PanoramaView::stroke_painted, this,
+          [this](int position, const QImage& mask, int value) { on_stroke(position, mask, value); });
   update_enabled();
+}
+
+void PreviewCleanPlateReaction::on_stroke(int position, const QImage& stroke, int value) {
+  widgets::ProjectDocument& document = window_.document();
+  const int frame = document.frame_index_at(position);
+  // The keyframe's edit so far (or none), with the stroke painted in.
+  QImage edit(stroke.size(), QImage::Format_Grayscale8);
+  edit.fill(0);
+  if (const CleanPlateEdit* old = document.project().tour.clean_plate_edit(frame)) {
+    const QImage previous(QString::fromStdString(old->mask));
+    if (!previous.isNull())
+      edit = previous.convertToFormat(QImage::Format_Grayscale8)
+                 .scaled(stroke.size(), Qt::IgnoreAspectRatio, Qt::FastTransformation);
+  }
+  for (int y = 0; y < stroke.height(); ++y) {
+    const uchar* painted = stroke.constScanLine(y);
+    uchar* out = edit.scanLine(y);
+    for (int x = 0; x < stroke.width(); ++x)
+      if (painted[x]) out[x] = static_cast<uchar>(value);
+  }
+  // A new file per stroke, so that undo can go back to the one before.
+  const QFileInfo project_file(document.file_name());
+  const QDir folder(document.file_name().isEmpty() ? QDir::temp().filePath("plenopath-clean-plates")
+                                                   : project_file.absoluteDir().filePath(
+                                                         project_file.completeBaseName() + ".clean-plates"));
+  QDir().mkpath(folder.path());
+  const QString file = folder.filePath(
+      QString("k%1_%2.png").arg(frame, 6, 10, QChar('0')).arg(QDateTime::currentMSecsSinceEpoch()));
+  if (!edit.save(file)) {
+    window_.show_error(QObject::tr("Clean plate"), QObject::tr("Cannot write %1").arg(file));
+    return;
+  }
+  Project after = document.snapshot();
+  auto& edits = after.tour.clean_plate_edits;
+  edits.erase(
+      std::remove_if(edits.begin(), edits.end(), [&](const CleanPlateEdit& e) { return e.frame == frame; }),
+      edits.end());
+  edits.push_back({frame, file.toStdString()});
+  document.undo_stack()->push(new widgets::ReplacePartsCommand(document,
+                                                               value == kCleanPlateKeep
+                                                                   ? QObject::tr("Paint clean plate back")
+                                                                   : QObject::tr("Paint clean plate away"),
+                                                               after, widgets::kSettingsChanged));
+  on_triggered();  // the preview again, with the edit
 }
 
 void PreviewCleanPlateReaction::update_enabled() {

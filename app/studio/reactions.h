@@ -115,7 +115,9 @@ class PlacePathOnPlanReaction : public Reaction {
 
 // Process > Preview Clean Plate (and the sampling panel's button): the frame on screen as the tour would show
 // it with clean plates on (keyframe_cleaner.h, the project's tour settings), a task with progress and Cancel
-// that changes nothing; the panorama then shows it before/after, the split dragged, Esc ends it.
+// that changes nothing; the panorama then shows it before/after, the split dragged, Esc ends it. A stroke
+// painted on it (Ctrl+drag away, Ctrl+Shift+drag back) becomes the keyframe's clean-plate edit: a mask
+// image beside the project (PROJECT.clean-plates/), one undo step, and the preview is made again.
 class PreviewCleanPlateReaction : public Reaction {
  public:
   PreviewCleanPlateReaction(QAction* action, MainWindow& window);
@@ -123,6 +125,7 @@ class PreviewCleanPlateReaction : public Reaction {
 
  private:
   void update_enabled();
+  void on_stroke(int position, const QImage& mask, int value);
 };
 
 // The File ▸ Open Recent menu, kept in QSettings ("recent_files").

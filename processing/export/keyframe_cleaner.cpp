@@ -2,6 +2,7 @@
 
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
+#include "processing/cleanplate/author_edits.h"
 #include "processing/cleanplate/rig_mask.h"
 #include "rig/synthetic_camera.h"
 
@@ -89,8 +90,13 @@ CleanedKeyframe KeyframeCleaner::clean(int frame, Progress& progress) {
       out.warnings.push_back("keyframe " + std::to_string(frame) + ": " +
                              std::to_string(static_cast<int>(100 * out.plate.unsupported_share)) +
                              " % of what moved was seen by no neighbour and stays as it was");
-    if (options_.fill_rig && !out.plate.rig_unfilled.empty())
-      out.image = apply_nadir_patch(out.image, out.plate.rig_unfilled, options_.nadir);
+    // The author's corrections (painted away or back), then the nadir patch on what is left of the rig.
+    cv::Mat edits, patch_region;
+    if (const CleanPlateEdit* edit = project_.tour.clean_plate_edit(frame))
+      edits = read_clean_plate_edit(edit->mask, out.original.size());
+    out.image = apply_clean_plate_edits(out.plate, out.original, edits, patch_region);
+    if ((options_.fill_rig || !edits.empty()) && cv::countNonZero(patch_region) > 0)
+      out.image = apply_nadir_patch(out.image, patch_region, options_.nadir);
   }
   if (options_.blur_faces) {
     progress.checkpoint(0.9, "blurring faces");

@@ -104,6 +104,7 @@ Project make_full_project(const fs::path& dir) {
   p.tour.nadir_patch = NadirPatch::kImage;
   p.tour.nadir_image = (dir / "media" / "logo.png").string();
   p.tour.blur_faces = true;
+  p.tour.clean_plate_edits = {{12, (dir / "test.masks" / "k000012_1.png").string()}};
   p.capture.rig_mask = (dir / "frames" / "rig mask.png").string();
   return p;
 }

@@ -200,6 +200,30 @@ TEST(Studio, PanoramaComparesBeforeAndAfter) {
   ASSERT_TRUE(wait_until([&] { return pano->comparing(); }, 60000)) << s.errors.join("\n").toStdString();
   EXPECT_FALSE(s.window.tasks().is_running());
   EXPECT_EQ(s.window.document().current_position(), 5);
+  // Ctrl+drag across the view's middle paints the clean plate away there: an edit of this frame, its mask
+  // beside the project, one undo step, and the preview made again.
+  const int steps = s.window.document().undo_stack()->count();
+  const QPoint from(pano->width() / 2 - 20, pano->height() / 2),
+      to(pano->width() / 2 + 20, pano->height() / 2);
+  QTest::mousePress(pano, Qt::LeftButton, Qt::ControlModifier, from);
+  QMouseEvent stroke(QEvent::MouseMove, to, Qt::LeftButton, Qt::LeftButton, Qt::ControlModifier);
+  QApplication::sendEvent(pano, &stroke);
+  QTest::mouseRelease(pano, Qt::LeftButton, Qt::ControlModifier, to);
+  const int frame = s.window.document().frame_index_at(5);
+  const CleanPlateEdit* edit = s.window.document().project().tour.clean_plate_edit(frame);
+  ASSERT_NE(edit, nullptr);
+  EXPECT_EQ(s.window.document().undo_stack()->count(), steps + 1);
+  const cv::Mat mask = cv::imread(edit->mask, cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(mask.empty()) << edit->mask;
+  // The view looks at azimuth 0, elevation 0: the image's centre, painted away.
+  std::printf("painted %d of %d pixels; mask %dx%d\n", cv::countNonZero(mask), int(mask.total()), mask.cols,
+              mask.rows);
+  EXPECT_EQ(mask.at<std::uint8_t>(mask.rows / 2, mask.cols / 2), kCleanPlateRemove);
+  EXPECT_EQ(mask.at<std::uint8_t>(2, 2), 0);
+  ASSERT_TRUE(wait_until([&] { return !s.window.tasks().is_running(); }, 60000));
+  EXPECT_TRUE(pano->comparing());
+  s.window.document().undo_stack()->undo();
+  EXPECT_EQ(s.window.document().project().tour.clean_plate_edit(frame), nullptr);
   s.window.document().set_current_position(6);
   EXPECT_FALSE(pano->comparing()) << "another frame ends the comparison";
 }
