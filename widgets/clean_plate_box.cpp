@@ -30,7 +30,7 @@ void push_tour(ProjectDocument& document, const TourSettings& tour, const QStrin
 
 CleanPlateBox::CleanPlateBox(ProjectDocument& document, QWidget* parent)
     : QGroupBox(tr("Clean plates"), parent), document_(document) {
-  clean_plates_ = new QCheckBox(tr("Export keyframes without people and rig"));
+  clean_plates_ = new QCheckBox(tr("Without people and rig"));
   clean_plates_->setObjectName("clean_plates");
   clean_plates_->setToolTip(
       tr("Each keyframe's people, operator and trolley replaced by what other frames saw "
@@ -39,6 +39,9 @@ CleanPlateBox::CleanPlateBox(ProjectDocument& document, QWidget* parent)
   nadir_->setObjectName("nadir_patch");
   for (const auto& n : EnumInfo<NadirPatch>::names) nadir_->addItem(tr(n.label), QString::fromLatin1(n.id));
   nadir_->setToolTip(tr("What covers the rig where no frame saw the scene behind it"));
+  // The dock is narrow: the box shrinks with it (the items' full text is in the list).
+  nadir_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  nadir_->setMinimumContentsLength(8);
   image_button_ = new QPushButton(tr("Image…"));
   image_button_->setObjectName("nadir_image");
   image_name_ = new QLabel;
@@ -50,9 +53,9 @@ CleanPlateBox::CleanPlateBox(ProjectDocument& document, QWidget* parent)
       "(track --mask-out writes the tracker's own to start from); cancel the dialog to clear it"));
   rig_mask_name_ = new QLabel;
   rig_mask_name_->setObjectName("rig_mask_name");
-  faces_ = new QCheckBox(tr("Blur faces that remain"));
+  faces_ = new QCheckBox(tr("Blur faces"));
   faces_->setObjectName("blur_faces");
-  preview_ = new QPushButton(tr("Preview on this frame"));
+  preview_ = new QPushButton(tr("Preview this frame"));
   preview_->setObjectName("preview_clean_plate");
   preview_->setToolTip(
       tr("The clean plate of the frame on screen, before/after in the panorama (Esc ends it)"));
@@ -151,7 +154,7 @@ void CleanPlateBox::show_settings() {
   const Project& p = document_.project();
   rig_mask_button_->setEnabled(t.export_clean_plates && !p.capture.empty());
   rig_mask_name_->setText(p.capture.rig_mask.empty()
-                              ? tr("found by the tracker")
+                              ? tr("automatic")
                               : QFileInfo(QString::fromStdString(p.capture.rig_mask)).fileName());
   preview_->setEnabled(!p.path.empty() && !p.capture.empty());
   showing_ = false;

@@ -14,6 +14,7 @@
 #include <QMimeData>
 #include <QProgressBar>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSignalBlocker>
 #include <QSplitter>
@@ -181,6 +182,10 @@ void MainWindow::create_docks() {
   sampling_scroll->setWidget(sampling_);
   sampling_scroll->setWidgetResizable(true);
   sampling_scroll->setFrameShape(QFrame::NoFrame);
+  sampling_scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  // As wide as the panel needs (the dock then is, as before); only the height scrolls.
+  sampling_scroll->setMinimumWidth(sampling_->minimumSizeHint().width() +
+                                   sampling_scroll->verticalScrollBar()->sizeHint().width());
   QDockWidget* sampling = dock(tr("Sampling"), "sampling_dock", sampling_scroll, Qt::RightDockWidgetArea);
   QDockWidget* layers = dock(tr("Layers"), "layers_dock", layers_, Qt::RightDockWidgetArea);
   QDockWidget* undo = dock(tr("History"), "history_dock", history, Qt::RightDockWidgetArea);
