@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -315,24 +316,46 @@ TEST_F(TourExportTest, ClearErrors) {
 
 // export --clean-plates on a capture with people walking and no depth maps: the static depth comes from the
 // plan, the keyframe comes out without the people (against the same walk rendered without them).
-TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
-  const fs::path dir = fs::temp_directory_path() / ("plenopath_clean_export_" + std::to_string(getpid()));
+// A walk through the office sample rendered 1024 x 512 into a temporary folder as the project's capture,
+// with what `add` turns on (people, the rig); `without` is the same with them off: the truth.
+struct CleanPlateWalk {
+  fs::path dir;
+  Project p;
+  CameraPath walk;
+  SyntheticScene scene;
+  RenderOptions render, without;
+};
+CleanPlateWalk clean_plate_walk(const std::string& name, int frames, std::uint32_t seed,
+                                const std::function<void(RenderOptions&)>& add) {
+  const fs::path dir = fs::temp_directory_path() / ("plenopath_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(dir);
   Project p;
   p.plan = make_office_sample_plan();
   AutoWalkOptions walk_options;
-  walk_options.max_frames = 50;
+  walk_options.max_frames = frames;
+  walk_options.seed = seed;
   CameraPath walk = auto_walk(p.plan, walk_options);
-  const SyntheticScene scene = build_synthetic_scene(p.plan);
-  RenderOptions render;
-  render.width = 1024;
-  render.height = 512;
-  render.depth = false;
-  render.people = 12;
-  render.frame_rate = 10;
-  RenderOptions without = render;
-  without.people = 0;
+  SyntheticScene scene = build_synthetic_scene(p.plan);
+  RenderOptions without;
+  without.width = 1024;
+  without.height = 512;
+  without.depth = false;
+  RenderOptions render = without;
+  add(render);
   write_rendered_capture(dir, scene, render, &walk, &p);
+  return {dir, std::move(p), std::move(walk), std::move(scene), render, without};
+}
+
+TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
+  CleanPlateWalk w = clean_plate_walk("clean_export", 50, AutoWalkOptions{}.seed, [](RenderOptions& r) {
+    r.people = 12;
+    r.frame_rate = 10;
+  });
+  const fs::path& dir = w.dir;
+  Project& p = w.p;
+  const CameraPath& walk = w.walk;
+  const SyntheticScene& scene = w.scene;
+  const RenderOptions &render = w.render, &without = w.without;
   const int key = 25;
   p.keyframes.indices = {key};
   p.keyframes.rank = {0};
@@ -361,23 +384,13 @@ TEST(TourExportCleanPlates, ThePeopleLeaveTheKeyframe) {
 // frames) is filled from frames further along, what none saw gets the author's nadir image, and the rig
 // filled matches the same walk rendered without trolley and operator.
 TEST(TourExportCleanPlates, TheRigIsFilledAndTheNadirPatched) {
-  const fs::path dir = fs::temp_directory_path() / ("plenopath_rig_export_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  Project p;
-  p.plan = make_office_sample_plan();
-  AutoWalkOptions walk_options;
-  walk_options.max_frames = 110;
-  walk_options.seed = 3;
-  CameraPath walk = auto_walk(p.plan, walk_options);
-  const SyntheticScene scene = build_synthetic_scene(p.plan);
-  RenderOptions render;
-  render.width = 1024;
-  render.height = 512;
-  render.depth = false;
-  render.trolley = render.operator_person = true;
-  RenderOptions without = render;
-  without.trolley = without.operator_person = false;
-  write_rendered_capture(dir, scene, render, &walk, &p);
+  CleanPlateWalk w =
+      clean_plate_walk("rig_export", 110, 3, [](RenderOptions& r) { r.trolley = r.operator_person = true; });
+  const fs::path& dir = w.dir;
+  Project& p = w.p;
+  const CameraPath& walk = w.walk;
+  const SyntheticScene& scene = w.scene;
+  const RenderOptions &render = w.render, &without = w.without;
   p.capture.camera_height_m = SceneOptions{}.camera_height;
   const int key = 60;
   p.keyframes.indices = {key};
