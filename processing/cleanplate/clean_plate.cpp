@@ -730,8 +730,18 @@ CleanPlate clean_plate(const CameraPath& path, int keyframe_position,
     cv::resize(image, out, small, 0, 0, cv::INTER_AREA);
     return out;
   };
+  // Depths too: from the plan they are rendered, and both passes need them.
+  std::map<int, cv::Mat> depths;
+  auto full_depth = [&](int position) -> cv::Mat {
+    if (position == keyframe_position) return key_depth;
+    auto it = depths.find(position);
+    if (it != depths.end()) return it->second;
+    cv::Mat depth = static_depth(position);
+    if (keep) depths.emplace(position, depth);
+    return depth;
+  };
   auto small_depth = [&](int position) {
-    const cv::Mat depth = position == keyframe_position ? key_depth : static_depth(position);
+    const cv::Mat depth = full_depth(position);
     if (depth.empty() || depth.type() != CV_32F) return depth;
     cv::Mat out;
     cv::resize(depth, out, small, 0, 0, cv::INTER_NEAREST);
@@ -755,7 +765,7 @@ CleanPlate clean_plate(const CameraPath& path, int keyframe_position,
   }
   found.rig = rig;
   SubProgress fine_progress(progress, 0.45, 1.0, "replacing what moved");
-  CleanPlate out = clean_plate_at(path, keyframe_position, full_frame, static_depth, rig_mask, options,
+  CleanPlate out = clean_plate_at(path, keyframe_position, full_frame, full_depth, rig_mask, options,
                                   fine_progress, &found);
   out.detected_rig = upscaled(coarse.detected_rig, key_image.size(), grow);
   return out;
