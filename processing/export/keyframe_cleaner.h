@@ -18,7 +18,7 @@
 namespace plenopath {
 
 class FrameSource;
-struct SyntheticScene;
+class SyntheticScene;
 
 struct KeyframeCleaning {
   bool clean_plates = false;  // static depth from the capture's depth maps, else rendered from the plan
