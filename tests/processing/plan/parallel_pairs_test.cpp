@@ -142,5 +142,34 @@ TEST(ParallelPairs, GridAgreesWithAllPairs) {
   EXPECT_GT(found, 100);  // the random set has plenty of close parallel neighbours
 }
 
+// Few segments, some crossing thousands of cells (a fine grid, long walls): compared with every segment
+// rather than through the grid, with the same outcome.
+TEST(ParallelPairs, LongSegmentsAmongFewAgreeWithAllPairs) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(0, 60), len(0.3, 5), jitter(-0.01, 0.01);
+  std::vector<Segment2> s = {
+      {{0, 0}, {400, 0}}, {{10, 0.3}, {300, 0.31}}, {{0, 40}, {0, -50}}, {{0.2, 30}, {0.2, -20}}};
+  for (int k = 0; k < 60; ++k) {
+    const Eigen::Vector2d a(pos(rng), pos(rng) - 30);
+    const double angle = (k % 2) * M_PI / 2 + jitter(rng);
+    s.push_back({a, a + len(rng) * Eigen::Vector2d(std::cos(angle), std::sin(angle))});
+  }
+  ParallelPairOptions o;
+  o.cell_size = 0.02;
+  const ParallelPairs grid = find_parallel_pairs(s, o);
+  std::vector<Best> left, right;
+  brute_force(s, o, &left, &right);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int side = 0; side < 2; ++side) {
+      const Best& b = side == 0 ? left[i] : right[i];
+      const int index = side == 0 ? grid.left[i] : grid.right[i];
+      ASSERT_EQ(index >= 0, b.j >= 0) << i;
+      if (index < 0) continue;
+      const ParallelPair& p = grid.pairs[static_cast<std::size_t>(index)];
+      EXPECT_EQ(p.i == static_cast<int>(i) ? p.j : p.i, b.j) << i;
+    }
+  EXPECT_TRUE(grid.left[0] >= 0 || grid.right[0] >= 0);  // the two long walls pair
+}
+
 }  // namespace
 }  // namespace plenopath
