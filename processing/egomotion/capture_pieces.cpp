@@ -50,9 +50,11 @@ CapturePieces find_capture_pieces(const std::vector<FrameTrackStats>& stats, con
   if (solid.size() < 2) return out;
 
   // Described frames by frame index.
-  std::vector<const FrameDescriptors*> described_at(n, nullptr);
-  for (const FrameDescriptors& d : *m.described)
-    if (d.frame >= 0 && d.frame < n && !d.descriptors.empty()) described_at[d.frame] = &d;
+  auto described_at = [&](int f) {
+    const int i = m.described->find(f);
+    return i >= 0 && m.described->has_descriptors(i);
+  };
+  auto load = [&](int f) { return m.described->load(m.described->find(f)); };
   auto bearing = [&](int t, int frame) { return m.view->bearing(t, frame); };
 
   for (std::size_t k = 1; k < solid.size(); ++k) {
@@ -60,9 +62,9 @@ CapturePieces find_capture_pieces(const std::vector<FrameTrackStats>& stats, con
     // Descriptor matches between the frames nearest both sides, nearest pairs first.
     std::vector<int> before, after;
     for (int f = a; f >= std::max(solid[k - 1].first, a - po.join_search_frames); --f)
-      if (described_at[f]) before.push_back(f);
+      if (described_at(f)) before.push_back(f);
     for (int f = b; f <= std::min(solid[k].last, b + po.join_search_frames); ++f)
-      if (described_at[f]) after.push_back(f);
+      if (described_at(f)) after.push_back(f);
     std::vector<std::pair<int, int>> pairs;
     for (int fa : before)
       for (int fb : after) pairs.emplace_back(fa, fb);
@@ -78,8 +80,7 @@ CapturePieces find_capture_pieces(const std::vector<FrameTrackStats>& stats, con
     for (const auto& [fa, fb] : pairs) {
       LoopMatch match;
       double direction = std::numeric_limits<double>::quiet_NaN();
-      if (!verify_frame_match(*described_at[fa], *described_at[fb], bearing,
-                              std::numeric_limits<double>::quiet_NaN(),
+      if (!verify_frame_match(load(fa), load(fb), bearing, std::numeric_limits<double>::quiet_NaN(),
                               std::numeric_limits<double>::infinity(), po.join_min_inliers, opt.loop.ratio,
                               m.two_view, rng, &match, &direction)) {
         continue;

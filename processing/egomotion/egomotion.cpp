@@ -12,6 +12,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/egomotion/descriptor_store.h"
 #include "processing/egomotion/egomotion_steps.h"
 #include "processing/util/grey_image.h"
 #include "processing/util/statistics.h"
@@ -85,12 +86,11 @@ struct EgomotionTracker::State {
   std::vector<double> ring_weights;  // per ring column (with a mask)
   void decide_mask(cv::Size size);
   void process(const cv::Mat& gray);
-  std::vector<std::vector<double>> rings;
+  std::unique_ptr<RingRegistrar> rings;  // created once the mask (and so the column weights) is decided
+  int processed = 0;                     // frames through process()
   std::vector<FrameTrackStats> stats;
   std::vector<int> live_after;  // live tracks after each frame (texture measure)
-  std::vector<double> window;   // ring column weights
-  std::vector<FrameDescriptors>
-      described;  // for loop closure and for joining across a stretch without tracks
+  DescriptorStore described;    // for loop closure and for joining across a stretch without tracks
   // The previous frame's working image and its live tracks, so that the frame before a dropout can be
   // described when the dropout is seen.
   cv::Mat previous_gray;
@@ -105,7 +105,7 @@ EgomotionTracker::EgomotionTracker(const EgomotionOptions& options) {
 }
 EgomotionTracker::~EgomotionTracker() = default;
 int EgomotionTracker::frame_count() const {
-  return static_cast<int>(state_->rings.size() + state_->held.size());
+  return state_->processed + static_cast<int>(state_->held.size());
 }
 
 void EgomotionTracker::add_frame(const cv::Mat& bgr) {
@@ -139,46 +139,31 @@ void EgomotionTracker::State::decide_mask(cv::Size size) {
   cv::Mat author;
   if (!options.mask.empty()) cv::resize(options.mask, author, size, 0, 0, cv::INTER_NEAREST);
   mask = combine_masks(author, options.static_mask.frames > 0 ? auto_mask.mask(size) : cv::Mat());
-  if (mask.empty()) return;
-  if (cv::countNonZero(mask) == 0) throw Error("egomotion: the mask leaves no pixel to track");
-  klt.set_mask(mask);
-  ring_weights = ring_column_weights(mask, options.ring);
-  window.clear();
+  if (!mask.empty()) {
+    if (cv::countNonZero(mask) == 0) throw Error("egomotion: the mask leaves no pixel to track");
+    klt.set_mask(mask);
+    ring_weights = ring_column_weights(mask, options.ring);
+  }
+  rings = std::make_unique<RingRegistrar>(options.ring, ring_weights.empty() ? nullptr : &ring_weights);
 }
 
 void EgomotionTracker::State::process(const cv::Mat& gray) {
   State& s = *this;
-  s.rings.push_back(s.mask.empty() ? make_ring_image(gray, s.options.ring)
-                                   : make_ring_image(gray, s.options.ring, s.mask));
   // The turn since the previous frame, from the rings, starts the KLT search (fast turns).
-  double predicted_shift = 0.0;
-  if (s.rings.size() >= 2) {
-    const std::vector<double>& previous = s.rings[s.rings.size() - 2];
-    const double max_px = s.options.ring.max_turn_deg_per_frame / 360.0 * gray.cols;
-    if (s.window.size() != previous.size()) {
-      s.window = axis_window(gray.cols, s.options.ring.axis_floor);
-      for (std::size_t u = 0; u < s.ring_weights.size() && u < s.window.size(); ++u)
-        s.window[u] *= s.ring_weights[u];
-    }
-    const RingShift shift = circular_phase_correlation(previous, s.rings.back(), 0.0, max_px, &s.window,
-                                                       s.options.ring.max_frequency_fraction);
-    if (shift.valid && shift.peak >= s.options.ring.min_peak) predicted_shift = shift.shift_px;
-  }
+  const RingShift shift = s.rings->add(s.mask.empty() ? make_ring_image(gray, s.options.ring)
+                                                      : make_ring_image(gray, s.options.ring, s.mask));
+  const double predicted_shift = shift.valid && shift.peak >= s.options.ring.min_peak ? shift.shift_px : 0.0;
   const FrameTrackStats st = s.klt.add_frame(gray, predicted_shift);
   s.stats.push_back(st);
-  const int index = static_cast<int>(s.rings.size()) - 1;
-  auto described_last = [&](int frame) { return !s.described.empty() && s.described.back().frame == frame; };
+  const int index = s.processed++;
+  auto described_last = [&](int frame) { return s.described.last_frame() == frame; };
   // Where the tracks stop, both sides are described (capture_pieces.cpp matches them).
   const bool dropout = index > 0 && st.tracked < s.options.pieces.min_link_tracks;
   if (dropout && !described_last(index - 1) && !s.previous_gray.empty())
-    s.described.push_back(describe_frame(s.previous_gray, index - 1, s.previous_live, s.previous_positions));
-  std::vector<cv::Point2f> positions;
-  for (int t : s.klt.live_tracks()) {
-    const TrackObservation& o = s.klt.tracks()[static_cast<std::size_t>(t)].observations.back();
-    positions.emplace_back(o.x, o.y);
-  }
+    s.described.add(describe_frame(s.previous_gray, index - 1, s.previous_live, s.previous_positions));
+  std::vector<cv::Point2f> positions = s.klt.live_positions();
   if ((s.options.loop.enabled && index % s.options.loop.descriptor_stride == 0) || dropout)
-    s.described.push_back(describe_frame(gray, index, s.klt.live_tracks(), positions));
+    s.described.add(describe_frame(gray, index, s.klt.live_tracks(), positions));
   s.previous_gray = gray.clone();
   s.previous_live = s.klt.live_tracks();
   s.previous_positions = std::move(positions);
@@ -199,7 +184,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
   result.static_mask_fraction =
       s.mask.empty() ? 0.0 : 1.0 - cv::countNonZero(s.mask) / double(s.mask.total());
   result.seconds_per_frame_stage = s.seconds_frames;
-  const int n = static_cast<int>(s.rings.size());
+  result.track_memory_mb = s.klt.memory().bytes / 1048576.0;
+  const int n = s.processed;
   if (n == 0) throw Error("egomotion: the capture has no frames");
   TrackerMeasurements m;
   m.options = &opt;
@@ -218,8 +204,7 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
   // ---- 1. coarse headings
   // Progress: the headings 5 %, the pieces the rest (each by its share of the frames).
   progress.checkpoint(0.0, "headings");
-  const RingHeadings rh =
-      solve_ring_headings(s.rings, opt.ring, s.ring_weights.empty() ? nullptr : &s.ring_weights);
+  const RingHeadings rh = s.rings->solve();
   result.ring_headings = rh.headings;
   progress.checkpoint(0.05, "headings");
 

@@ -120,6 +120,7 @@ struct EgomotionResult {
   int flagged_frames = 0;
   cv::Mat mask;  // the pixels used (255) and masked (0) at the working size; empty = all used
   double static_mask_fraction = 0.0;   // share of the image masked (author's and automatic)
+  double track_memory_mb = 0;          // the KLT track history kept for the geometry (MiB)
   double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)
   double seconds_geometry = 0;         // everything in finish()
 };

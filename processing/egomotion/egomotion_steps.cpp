@@ -147,22 +147,23 @@ int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* proble
   return merged;
 }
 
-TrackView::TrackView(const KltTracker& tracker, int frame_count) : klt(&tracker), frame_tracks(frame_count) {
-  const std::vector<FeatureTrack>& all = tracker.tracks();
-  for (int t = 0; t < static_cast<int>(all.size()); ++t)
-    for (const TrackObservation& o : all[t].observations)
-      if (o.frame < frame_count) frame_tracks[o.frame].push_back(t);
-}
-
-const TrackObservation* TrackView::observation(int track, int frame) const {
-  const auto& obs = klt->tracks()[static_cast<std::size_t>(track)].observations;
-  const int k = frame - obs.front().frame;
-  if (k < 0 || k >= static_cast<int>(obs.size())) return nullptr;
-  return &obs[static_cast<std::size_t>(k)];
+TrackView::TrackView(const KltTracker& tracker, int frame_count)
+    : klt(&tracker), frame_begin_(static_cast<std::size_t>(frame_count) + 1, 0) {
+  // Counting sort by frame: tracks are visited in increasing order, so each frame's list is sorted.
+  const int tracks = tracker.track_count();
+  for (int t = 0; t < tracks; ++t)
+    for (int f = tracker.first_frame(t); f <= std::min(tracker.last_frame(t), frame_count - 1); ++f)
+      ++frame_begin_[static_cast<std::size_t>(f) + 1];
+  for (std::size_t f = 1; f < frame_begin_.size(); ++f) frame_begin_[f] += frame_begin_[f - 1];
+  track_ids_.resize(frame_begin_.back());
+  std::vector<std::size_t> next(frame_begin_.begin(), frame_begin_.end() - 1);
+  for (int t = 0; t < tracks; ++t)
+    for (int f = tracker.first_frame(t); f <= std::min(tracker.last_frame(t), frame_count - 1); ++f)
+      track_ids_[next[static_cast<std::size_t>(f)]++] = t;
 }
 
 Eigen::Vector3d TrackView::bearing(int track, int frame) const {
-  return klt->bearing(*observation(track, frame));
+  return klt->bearing(klt->observation(track, frame));
 }
 
 }  // namespace plenopath::egomotion_steps

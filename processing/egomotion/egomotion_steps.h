@@ -11,6 +11,7 @@
 
 #include "model/camera_path.h"
 #include "model/path_points.h"
+#include "processing/egomotion/descriptor_store.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/egomotion/klt_tracks.h"
 #include "processing/egomotion/loop_closure.h"
@@ -36,22 +37,40 @@ int resect_tilted_pose(Eigen::Vector3d* pose, Eigen::Vector2d* tilt,
 int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,
                       std::vector<int>* point_of_track);
 
-// The KLT tracks seen per frame, and their observations and bearings.
+// The KLT tracks seen per frame, and their observations and bearings. The per-frame lists are one array
+// (4 bytes an observation), not a vector per frame.
 struct TrackView {
+  struct Tracks {  // the tracks observed in one frame, in increasing order
+    const int* first = nullptr;
+    const int* last = nullptr;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+    std::size_t size() const { return static_cast<std::size_t>(last - first); }
+    bool empty() const { return first == last; }
+  };
   const KltTracker* klt = nullptr;
-  std::vector<std::vector<int>> frame_tracks;  // per frame: the tracks observed in it
 
   explicit TrackView(const KltTracker& tracker, int frame_count);
-  const std::vector<FeatureTrack>& tracks() const { return klt->tracks(); }
-  const TrackObservation* observation(int track, int frame) const;  // nullptr when not seen there
-  Eigen::Vector3d bearing(int track, int frame) const;              // camera frame, unit
+  int frame_count() const { return static_cast<int>(frame_begin_.size()) - 1; }
+  Tracks frame_tracks(int frame) const {
+    return {track_ids_.data() + frame_begin_[static_cast<std::size_t>(frame)],
+            track_ids_.data() + frame_begin_[static_cast<std::size_t>(frame) + 1]};
+  }
+  int track_count() const { return klt->track_count(); }
+  bool seen(int track, int frame) const { return klt->seen(track, frame); }
+  Eigen::Vector3d bearing(int track, int frame) const;  // camera frame, unit; requires seen(track, frame)
+
+ private:
+  std::vector<std::size_t>
+      frame_begin_;  // frame f's tracks: track_ids_[frame_begin_[f], frame_begin_[f + 1])
+  std::vector<int> track_ids_;
 };
 
 // Everything finish() has measured before the geometry, for all frames.
 struct TrackerMeasurements {
   const EgomotionOptions* options = nullptr;
   const TrackView* view = nullptr;
-  const std::vector<FrameDescriptors>* described = nullptr;
+  const DescriptorStore* described = nullptr;
   std::vector<double> heading;       // chained frame-to-frame turns (radians), the heading guide
   std::vector<double> moving_share;  // per frame, -1 when unknown (egomotion.cpp explains)
   std::vector<bool> textureless;

@@ -19,7 +19,7 @@ constexpr double kLongStepInlierShare = 0.7;
 void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937& rng,
                          TrackerMeasurements* m) {
   const TrackView& view = *m->view;
-  const int n = static_cast<int>(view.frame_tracks.size());
+  const int n = view.frame_count();
   m->heading.assign(n, 0.0);
   // Per frame: the share of the tracks continued from the previous frame that move against the static
   // scene (off the epipolar geometry of the step, or of a pure turn when the step has no parallax); -1 when
@@ -34,12 +34,12 @@ void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937&
     const double ring_turn = ring_headings[f] - ring_headings[f - 1];
     std::vector<Eigen::Vector3d> ba, bb;
     std::vector<double> azimuth_change;
-    for (int t : view.frame_tracks[f]) {
-      if (!view.observation(t, f - 1)) continue;
+    for (int t : view.frame_tracks(f)) {
+      if (!view.seen(t, f - 1)) continue;
       const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
       azimuth_change.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
       // A spread subset is plenty for the two-view turn (tracks are in detection order, i.e. spread).
-      if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || view.frame_tracks[f].size() < 480)) {
+      if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || view.frame_tracks(f).size() < 480)) {
         ba.push_back(a);
         bb.push_back(b);
       }
@@ -57,8 +57,8 @@ void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937&
       if (solved) turn = rel.turn;
       if (solved || rel.median_parallax < m->two_view.min_parallax) {
         int moving = 0, total = 0;
-        for (int t : view.frame_tracks[f]) {
-          if (!view.observation(t, f - 1)) continue;
+        for (int t : view.frame_tracks(f)) {
+          if (!view.seen(t, f - 1)) continue;
           const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
           const Eigen::Vector3d turned = rotate_z(a, -turn);
           const double error = solved ? std::abs(planar_epipolar_error(a, b, rel.turn, rel.direction))

@@ -51,6 +51,80 @@ void KltOptions::check() const {
 
 KltTracker::KltTracker(const KltOptions& options) : options_(options) { options.check(); }
 
+KltTracker::Packed KltTracker::pack(float x, float y) const {
+  auto unit = [&](float v) {
+    return static_cast<std::uint16_t>(std::clamp(std::lround(v / quantum_), 0L, 65535L));
+  };
+  return {unit(x), unit(y)};
+}
+
+int KltTracker::start_track(int frame, float x, float y) {
+  StoredTrack s;
+  s.first_frame = frame;
+  s.length = 1;
+  if (free_open_.empty()) {
+    s.open = static_cast<int>(open_.size());
+    open_.emplace_back();
+  } else {
+    s.open = free_open_.back();
+    free_open_.pop_back();
+  }
+  open_[static_cast<std::size_t>(s.open)].assign(1, pack(x, y));
+  stored_.push_back(s);
+  moved_frames_.push_back(0);
+  return static_cast<int>(stored_.size()) - 1;
+}
+
+void KltTracker::extend_track(int track, float x, float y) {
+  StoredTrack& s = stored_[static_cast<std::size_t>(track)];
+  open_[static_cast<std::size_t>(s.open)].push_back(pack(x, y));
+  ++s.length;
+}
+
+void KltTracker::close_track(int track) {
+  StoredTrack& s = stored_[static_cast<std::size_t>(track)];
+  if (s.open < 0) return;
+  std::vector<Packed>& o = open_[static_cast<std::size_t>(s.open)];
+  s.offset = static_cast<std::int64_t>(closed_.size());
+  closed_.insert(closed_.end(), o.begin(), o.end());
+  o.clear();
+  free_open_.push_back(s.open);
+  s.open = -1;
+}
+
+TrackObservation KltTracker::observation(int track, int frame) const {
+  const StoredTrack& s = stored_[static_cast<std::size_t>(track)];
+  const int k = frame - s.first_frame;
+  const Packed& p = s.open >= 0 ? open_[static_cast<std::size_t>(s.open)][static_cast<std::size_t>(k)]
+                                : closed_[static_cast<std::size_t>(s.offset + k)];
+  return {frame, static_cast<float>(p[0] * quantum_), static_cast<float>(p[1] * quantum_)};
+}
+
+TrackObservation KltTracker::last_observation(int track) const {
+  return observation(track, last_frame(track));
+}
+
+std::vector<FeatureTrack> KltTracker::tracks() const {
+  std::vector<FeatureTrack> out(stored_.size());
+  for (int t = 0; t < track_count(); ++t)
+    for (int f = first_frame(t); f <= last_frame(t); ++f)
+      out[static_cast<std::size_t>(t)].observations.push_back(observation(t, f));
+  return out;
+}
+
+TrackMemory KltTracker::memory() const {
+  TrackMemory m;
+  m.tracks = stored_.size();
+  m.observations = closed_.size();
+  m.bytes = closed_.size() * sizeof(Packed) + stored_.capacity() * sizeof(StoredTrack) +
+            moved_frames_.capacity() * sizeof(int);
+  for (const auto& o : open_) {
+    m.observations += o.size();
+    m.bytes += o.capacity() * sizeof(Packed) + sizeof(o);
+  }
+  return m;
+}
+
 Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
   // OpenCV puts pixel centres on integers; rig/spherical.h puts them at u + 0.5.
   const Eigen::Vector3d b = equirect_to_bearing({o.x + 0.5, o.y + 0.5}, width_, height_);
@@ -71,6 +145,7 @@ cv::Mat KltTracker::prepare(const cv::Mat& frame) {
   if (width_ == 0) {
     width_ = gray.cols;
     height_ = gray.rows;
+    quantum_ = width_ / 65536.0;
     pad_ = (options_.window_px / 2 + 2) << options_.pyramid_levels;
     pad_ = std::min(pad_, width_ / 2);
   } else if (gray.cols != width_ || gray.rows != height_) {
@@ -108,10 +183,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
   std::vector<int> still_live;
   if (!live_.empty() && !previous_pyramid_.empty()) {
     std::vector<cv::Point2f> from, to, back;
-    for (int t : live_) {
-      const TrackObservation& o = tracks_[t].observations.back();
-      from.emplace_back(o.x + pad_, o.y + pad_);
-    }
+    for (const cv::Point2f& o : live_positions_) from.emplace_back(o.x + pad_, o.y + pad_);
     std::vector<unsigned char> status, status_back;
     std::vector<float> error;
     const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
@@ -172,6 +244,9 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
         }
       });
     }
+    std::vector<cv::Point2f> still_positions;
+    // Every track ends here but those extended below (a cut track ends too: its continuation is a new one).
+    std::vector<char> extended(live_.size(), 0);
     for (size_t k = 0; k < live_.size(); ++k) {
       if (!continued[k]) {
         ++stats.lost;
@@ -208,11 +283,9 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
         float fx = std::fmod(static_cast<float>(at.x) - pad_, static_cast<float>(width_));
         if (fx < 0) fx += width_;
         if (fx >= width_) fx -= width_;
-        FeatureTrack t;
-        t.observations.push_back({frame_index, fx, static_cast<float>(at.y) - pad_});
-        tracks_.push_back(std::move(t));
-        moved_frames_.push_back(0);
-        still_live.push_back(static_cast<int>(tracks_.size()) - 1);
+        const float fy = static_cast<float>(at.y) - pad_;
+        still_live.push_back(start_track(frame_index, fx, fy));
+        still_positions.emplace_back(fx, fy);
         still_patches.push_back(std::move(fresh));
         continue;
       }
@@ -221,7 +294,6 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
       x = std::fmod(x, static_cast<float>(width_));
       if (x < 0) x += width_;
       if (x >= width_) x -= width_;
-      FeatureTrack& track = tracks_[live_[k]];
       int& age = moved_frames_[live_[k]];
       if (moved) ++age;
       // Each track's own limit, between half and all of max_track_frames: tracks born together (all of
@@ -244,16 +316,17 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
             continue;
           }
         }
-        FeatureTrack next;
-        next.observations.push_back(track.observations.back());
-        next.observations.push_back({frame_index, x, y});
-        tracks_.push_back(std::move(next));
-        moved_frames_.push_back(1);
-        still_live.push_back(static_cast<int>(tracks_.size()) - 1);
+        const int next = start_track(frame_index - 1, live_positions_[k].x, live_positions_[k].y);
+        extend_track(next, x, y);
+        moved_frames_[static_cast<std::size_t>(next)] = 1;
+        still_live.push_back(next);
+        still_positions.emplace_back(x, y);
         if (affine) still_patches.push_back(std::move(next_patch));
       } else {
-        track.observations.push_back({frame_index, x, y});
+        extend_track(live_[k], x, y);
+        extended[k] = 1;
         still_live.push_back(live_[k]);
+        still_positions.emplace_back(x, y);
         if (affine) {
           still_patches.push_back(std::move(live_patches_[k]));
           still_patches.back().linear = linear;
@@ -267,8 +340,15 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
         }
       }
     }
+    for (size_t k = 0; k < live_.size(); ++k)
+      if (!extended[k]) close_track(live_[k]);
     stats.tracked = static_cast<int>(still_live.size());
     stats.median_flow_px = median(flow);
+    live_positions_ = std::move(still_positions);
+  } else {
+    for (int t : live_) close_track(t);  // no previous frame to track from (cannot happen after the first)
+    still_live.clear();
+    live_positions_.clear();
   }
   live_ = still_live;
   live_patches_ = std::move(still_patches);
@@ -277,10 +357,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
     cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
     mask.rowRange(static_cast<int>(std::ceil(y_min)), static_cast<int>(std::floor(y_max))).setTo(255);
     if (!mask_.empty()) cv::bitwise_and(mask, mask_, mask);
-    for (int t : live_) {
-      const TrackObservation& o = tracks_[t].observations.back();
+    for (const cv::Point2f& o : live_positions_)
       cv::circle(mask, cv::Point(cvRound(o.x), cvRound(o.y)), options_.min_distance_px, cv::Scalar(0), -1);
-    }
     std::vector<cv::Point2f> corners;
     const int wanted = options_.max_features - static_cast<int>(live_.size());
     cv::goodFeaturesToTrack(gray, corners, wanted, options_.quality_level, options_.min_distance_px, mask, 5);
@@ -301,11 +379,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
         if (!lp.patch.valid) continue;  // too little structure to refine: not worth a track
         live_patches_.push_back(std::move(lp));
       }
-      FeatureTrack t;
-      t.observations.push_back({frame_index, c.x, c.y});
-      tracks_.push_back(std::move(t));
-      moved_frames_.push_back(0);
-      live_.push_back(static_cast<int>(tracks_.size()) - 1);
+      live_.push_back(start_track(frame_index, c.x, c.y));
+      live_positions_.push_back(c);
       ++stats.detected;
     }
   } else {

@@ -5,6 +5,9 @@
 // width (resized) and observations are kept as working-image pixels; bearing() turns them into unit
 // bearings in the camera frame (rig/spherical.h).
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <deque>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -61,6 +64,11 @@ struct FeatureTrack {
   std::vector<TrackObservation> observations;  // consecutive frames
 };
 
+// Bytes the tracker keeps for its track history: about 4 per observation, 16 per track.
+struct TrackMemory {
+  std::size_t observations = 0, tracks = 0, bytes = 0;
+};
+
 struct FrameTrackStats {
   int tracked = 0;            // tracks continued into this frame
   int lost = 0;               // tracks that ended at the previous frame
@@ -77,7 +85,20 @@ class KltTracker {
   // the search's starting point so fast turns stay within the pyramid's reach.
   FrameTrackStats add_frame(const cv::Mat& frame, double predicted_shift_px = 0.0);
 
-  const std::vector<FeatureTrack>& tracks() const { return tracks_; }
+  // The track history. Observations are kept packed (16-bit fixed point: 1/64 px at 1024 wide, far below
+  // what Lucas-Kanade resolves), so that a 100 000-frame walk's 60 million observations take 240 MB, not
+  // the 1.4 GB of one vector per track; the live tracks are followed at full precision.
+  int track_count() const { return static_cast<int>(stored_.size()); }
+  int first_frame(int track) const { return stored_[static_cast<std::size_t>(track)].first_frame; }
+  int last_frame(int track) const {
+    const StoredTrack& s = stored_[static_cast<std::size_t>(track)];
+    return s.first_frame + s.length - 1;
+  }
+  bool seen(int track, int frame) const { return frame >= first_frame(track) && frame <= last_frame(track); }
+  TrackObservation observation(int track, int frame) const;  // requires seen(track, frame)
+  TrackObservation last_observation(int track) const;
+  std::vector<FeatureTrack> tracks() const;  // every track, unpacked (tests and small captures)
+  TrackMemory memory() const;
   int frame_count() const { return frame_count_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -89,16 +110,33 @@ class KltTracker {
   const cv::Mat& mask() const { return mask_; }  // at the working size once a frame was added
   const std::vector<TiltEstimate>& tilts() const { return tilts_; }  // per frame (level_bearings)
   const std::vector<int>& live_tracks() const { return live_; }      // tracks observed in the last frame
+  const std::vector<cv::Point2f>& live_positions() const { return live_positions_; }  // ... and where
   int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
 
  private:
   cv::Mat prepare(const cv::Mat& frame);
+  using Packed = std::array<std::uint16_t, 2>;  // x, y in units of quantum_ pixels
+  struct StoredTrack {
+    int first_frame = 0;
+    int length = 0;
+    std::int64_t offset = -1;  // into closed_ once the track has ended
+    int open = -1;             // its slot in open_ while it is live
+  };
+  int start_track(int frame, float x, float y);  // a new track (live), returns its index
+  void extend_track(int track, float x, float y);
+  void close_track(int track);  // the track has ended: its observations move to closed_
+  Packed pack(float x, float y) const;
   KltOptions options_;
   int width_ = 0, height_ = 0, pad_ = 0;
   int frame_count_ = 0;
-  std::vector<FeatureTrack> tracks_;
-  std::vector<int> live_;          // indices of tracks observed in the last frame
-  std::vector<int> moved_frames_;  // per track: frames since its start in which the camera moved
+  double quantum_ = 1.0 / 64.0;  // pixels per packed unit: width / 65536
+  std::vector<StoredTrack> stored_;
+  std::deque<Packed> closed_;  // blocks, not one array: no doubling of hundreds of MB as it grows               // ended tracks' observations, each track's consecutive
+  std::vector<std::vector<Packed>> open_;    // live tracks' observations, by slot
+  std::vector<int> free_open_;               // unused slots of open_
+  std::vector<int> live_;                    // indices of tracks observed in the last frame
+  std::vector<cv::Point2f> live_positions_;  // parallel to live_: their last positions, full precision
+  std::vector<int> moved_frames_;            // per track: frames since its start in which the camera moved
   struct LivePatch {
     AffinePatch patch;                        // as the track first saw it
     cv::Matx22d linear = cv::Matx22d::eye();  // its deformation up to the last frame

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/option_check.h"
+#include "processing/egomotion/descriptor_store.h"
 #include "processing/util/statistics.h"
 
 namespace plenopath {
@@ -111,26 +112,30 @@ bool verify_frame_match(const FrameDescriptors& fa, const FrameDescriptors& fb,
   return true;
 }
 
-std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& described,
+std::vector<LoopMatch> find_loop_closures(const DescriptorStore& store, int first_frame, int last_frame,
                                           const std::function<Eigen::Vector3d(int)>& pose,
                                           const std::function<double(int)>& travelled,
                                           const std::function<Eigen::Vector3d(int, int)>& bearing,
                                           double typical_step, const PlanarTwoViewOptions& two_view,
                                           const LoopClosureOptions& options, std::mt19937& rng) {
   std::vector<LoopMatch> out;
-  if (!options.enabled || !(typical_step > 0) || described.size() < 2) return out;
+  // The store's entries in range (their descriptors stay on disk until a candidate pair is verified).
+  std::vector<int> entries;
+  for (int i = 0; i < store.size(); ++i)
+    if (store.frame(i) >= first_frame && store.frame(i) <= last_frame) entries.push_back(i);
+  if (!options.enabled || !(typical_step > 0) || entries.size() < 2) return out;
   const double max_distance = options.max_distance_steps * typical_step;
   const double min_travel = options.min_travel_steps * typical_step;
   const double max_turn_error = options.max_turn_disagreement_deg * M_PI / 180.0;
   std::vector<Eigen::Vector3d> poses;
   std::vector<double> along;
-  for (const FrameDescriptors& d : described) {
-    poses.push_back(pose(d.frame));
-    along.push_back(travelled(d.frame));
+  for (int i : entries) {
+    poses.push_back(pose(store.frame(i)));
+    along.push_back(travelled(store.frame(i)));
   }
   int next_allowed = 0;
-  for (std::size_t b = 1; b < described.size(); ++b) {
-    if (described[b].frame < next_allowed || described[b].descriptors.empty()) continue;
+  for (std::size_t b = 1; b < entries.size(); ++b) {
+    if (store.frame(entries[b]) < next_allowed || !store.has_descriptors(entries[b])) continue;
     // The nearest earlier place, far enough back along the path.
     int best = -1;
     double best_distance = max_distance;
@@ -143,8 +148,8 @@ std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& d
       }
     }
     if (best < 0) continue;
-    const FrameDescriptors& fa = described[static_cast<std::size_t>(best)];
-    const FrameDescriptors& fb = described[b];
+    const FrameDescriptors fa = store.load(entries[static_cast<std::size_t>(best)]);
+    const FrameDescriptors fb = store.load(entries[b]);
     const double turn_guess =
         std::remainder(poses[b].z() - poses[static_cast<std::size_t>(best)].z(), 2 * M_PI);
     LoopMatch m;

@@ -67,7 +67,9 @@ bool verify_frame_match(const FrameDescriptors& fa, const FrameDescriptors& fb,
 // pose(frame): estimated (x, y, heading); travelled(frame): estimated path length up to it; bearing(track,
 // frame): the track's unit bearing in that frame (camera frame). typical_step: the median keyframe step in
 // the same units as the poses.
-std::vector<LoopMatch> find_loop_closures(const std::vector<FrameDescriptors>& described,
+class DescriptorStore;
+// Only the described frames in [first_frame, last_frame] take part.
+std::vector<LoopMatch> find_loop_closures(const DescriptorStore& described, int first_frame, int last_frame,
                                           const std::function<Eigen::Vector3d(int)>& pose,
                                           const std::function<double(int)>& travelled,
                                           const std::function<Eigen::Vector3d(int, int)>& bearing,

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -82,10 +83,10 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   for (const BundleObservation& o : p.observations) {
     if (o.pose < first || o.pose > last || count[o.point] < 2) continue;
     if (tilted) {
-      problem.AddResidualBlock(TiltedBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
+      problem.AddResidualBlock(TiltedBearingCost::Create(o.bearing()), &loss, p.poses[o.pose].data(),
                                p.tilts[o.pose].data(), p.points[o.point].data());
     } else {
-      problem.AddResidualBlock(PlanarBearingCost::Create(o.bearing), &loss, p.poses[o.pose].data(),
+      problem.AddResidualBlock(PlanarBearingCost::Create(o.bearing()), &loss, p.poses[o.pose].data(),
                                p.points[o.point].data());
     }
     pose_used[o.pose] = true;
@@ -152,6 +153,39 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   progress.throw_if_cancelled();
 }
 
+// The points not marked in `done` (and marked there once placed) by least squares on their rays from the
+// current poses (the point nearest all of them): for each, sum (I - d d^T) p = sum (I - d d^T) c. Points
+// whose rays are too near parallel to fix a position are left as they are.
+void retriangulate(BundleProblem& p, std::vector<char>& done) {
+  std::vector<Eigen::Matrix3d> a(p.points.size(), Eigen::Matrix3d::Zero());
+  std::vector<Eigen::Vector3d> rhs(p.points.size(), Eigen::Vector3d::Zero());
+  const bool tilted = !p.tilts.empty();
+  for (const BundleObservation& o : p.observations) {
+    const std::size_t q = static_cast<std::size_t>(o.point);
+    if (done[q]) continue;
+    const Eigen::Vector3d& pose = p.poses[static_cast<std::size_t>(o.pose)];
+    // world_from_camera = Rz(heading) Ry(pitch) Rx(roll), as tilted_camera_direction (bearing_cost.h) undoes.
+    Eigen::Matrix3d r = Eigen::AngleAxisd(pose.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    if (tilted) {
+      const Eigen::Vector2d& t = p.tilts[static_cast<std::size_t>(o.pose)];
+      r = r * Eigen::AngleAxisd(t.x(), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(t.y(), Eigen::Vector3d::UnitX());
+    }
+    const Eigen::Vector3d d = (r * o.bearing()).normalized();
+    const Eigen::Matrix3d m = Eigen::Matrix3d::Identity() - d * d.transpose();
+    a[q] += m;
+    rhs[q] += m * Eigen::Vector3d(pose.x(), pose.y(), 0.0);
+  }
+  for (std::size_t q = 0; q < p.points.size(); ++q) {
+    if (done[q] || a[q].isZero()) continue;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(a[q]);
+    // The smallest eigenvalue is about n sin^2 of the rays' spread: below (1 deg)^2 a ray, no position.
+    if (!(eigen.eigenvalues()[0] > 3e-4 * a[q].trace() / 2.0)) continue;
+    p.points[q] = a[q].ldlt().solve(rhs[q]);
+    done[q] = 1;
+  }
+}
+
 // Moves the poses after `last` and the points first seen after it by the rigid motion that took pose
 // `last` from `before` to `after`.
 void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, int last,
@@ -173,26 +207,67 @@ void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, 
 }
 
 // At most about `limit` observations: each point keeps its first and last and evenly spaced ones between
-// (at least three), so that every point still ties together the stretch of path that saw it.
-std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& observations, std::size_t points,
+// (at least three), so that every point still ties together the stretch of path that saw it. When even three
+// a point are too many (a long capture: 100 000 frames make about two million points), only some points take
+// part, spread evenly over the poses: for each pose, of the points first seen there, those seen over the
+// longest stretch of poses (a point tied by loop closure spans both visits).
+std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& observations,
                                        std::size_t limit) {
-  std::vector<std::vector<int>> by_point(points);
-  for (std::size_t k = 0; k < observations.size(); ++k)
-    by_point[observations[k].point].push_back(static_cast<int>(k));
-  std::size_t seen = 0;
-  for (const auto& v : by_point) seen += !v.empty();
-  const std::size_t keep = std::max<std::size_t>(3, seen > 0 ? limit / seen : 3);
+  // Observation indices by point, each point's in pose order (no per-point vectors: millions of points).
+  std::vector<int> order(observations.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const BundleObservation &oa = observations[static_cast<std::size_t>(a)],
+                            &ob = observations[static_cast<std::size_t>(b)];
+    return oa.point != ob.point ? oa.point < ob.point : oa.pose < ob.pose;
+  });
+  struct Run {
+    std::size_t begin, end;  // in `order`
+  };
+  std::vector<Run> runs;  // one per point with observations
+  for (std::size_t k = 0; k < order.size();) {
+    std::size_t e = k + 1;
+    while (e < order.size() && observations[static_cast<std::size_t>(order[e])].point ==
+                                   observations[static_cast<std::size_t>(order[k])].point)
+      ++e;
+    runs.push_back({k, e});
+    k = e;
+  }
+  const std::size_t seen = runs.size();
+  constexpr std::size_t kMinKeep = 3;
+  const std::size_t keep = std::max<std::size_t>(kMinKeep, seen > 0 ? limit / seen : kMinKeep);
+  if (seen * kMinKeep > limit) {
+    // Too many points: by first pose, the longest-seen first, an even quota per pose.
+    auto pose_at = [&](std::size_t k) { return observations[static_cast<std::size_t>(order[k])].pose; };
+    auto span = [&](const Run& r) { return pose_at(r.end - 1) - pose_at(r.begin); };
+    std::stable_sort(runs.begin(), runs.end(), [&](const Run& a, const Run& b) {
+      return pose_at(a.begin) != pose_at(b.begin) ? pose_at(a.begin) < pose_at(b.begin) : span(a) > span(b);
+    });
+    int poses = 0;
+    for (std::size_t r = 0; r < runs.size(); ++r)
+      poses += r == 0 || pose_at(runs[r].begin) != pose_at(runs[r - 1].begin);
+    const std::size_t quota =
+        std::max<std::size_t>(1, limit / kMinKeep / static_cast<std::size_t>(std::max(1, poses)));
+    std::vector<Run> chosen;
+    std::size_t taken = 0;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      if (r > 0 && pose_at(runs[r].begin) != pose_at(runs[r - 1].begin)) taken = 0;
+      if (taken++ < quota) chosen.push_back(runs[r]);
+    }
+    runs = std::move(chosen);
+  }
   std::vector<BundleObservation> out;
-  out.reserve(std::min(observations.size(), keep * seen));
-  for (auto& v : by_point) {
-    std::sort(v.begin(), v.end(), [&](int a, int b) { return observations[a].pose < observations[b].pose; });
-    if (v.size() <= keep) {
-      for (int k : v) out.push_back(observations[k]);
+  out.reserve(std::min(observations.size(), keep * runs.size()));
+  for (const Run& run : runs) {
+    const std::size_t size = run.end - run.begin;
+    if (size <= keep) {
+      for (std::size_t k = run.begin; k < run.end; ++k)
+        out.push_back(observations[static_cast<std::size_t>(order[k])]);
       continue;
     }
     for (std::size_t j = 0; j < keep; ++j)
-      out.push_back(
-          observations[v[static_cast<std::size_t>(std::lround(double(j) * (v.size() - 1) / (keep - 1)))]]);
+      out.push_back(observations[static_cast<std::size_t>(
+          order[run.begin + static_cast<std::size_t>(std::lround(double(j) * (size - 1) / (keep - 1)))])]);
   }
   return out;
 }
@@ -225,13 +300,14 @@ std::vector<double> observation_errors(const BundleProblem& p) {
     const Eigen::Vector3d& q = p.points[o.point];
     const Eigen::Vector3d& c = p.poses[o.pose];
     if (!p.tilts.empty()) {
-      e.push_back(tilted_ray_error(c, p.tilts[o.pose], q, o.bearing));
+      e.push_back(tilted_ray_error(c, p.tilts[o.pose], q, o.bearing()));
       continue;
     }
     const double ch = std::cos(c.z()), sh = std::sin(c.z());
     const Eigen::Vector3d d(ch * (q.x() - c.x()) + sh * (q.y() - c.y()),
                             -sh * (q.x() - c.x()) + ch * (q.y() - c.y()), q.z());
-    const double angle = std::atan2(d.cross(o.bearing).norm(), d.dot(o.bearing));
+    const Eigen::Vector3d b = o.bearing();
+    const double angle = std::atan2(d.cross(b).norm(), d.dot(b));
     e.push_back(std::isfinite(angle) ? angle : M_PI);
   }
   return e;
@@ -276,16 +352,56 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
   // put back after each solve).
   const std::size_t limit = static_cast<std::size_t>(options.global_max_observations);
   bool thinned_any = false;
+  // A thinned global pass fixed the path's shape; windows against every observation, each holding its first
+  // and last poses (so the shape stays), restore the detail the thinning left out.
+  auto restore_detail = [&]() {
+    const int size = options.window_keyframes > 0 ? options.window_keyframes : 80;
+    const int overlap = std::min(options.window_overlap, size / 4);
+    for (int first = 0; first + overlap < n; first += size - 2 * overlap) {
+      const int last = std::min(n - 1, first + size - 1);
+      const int held_from = last == n - 1 ? n : last - overlap + 1;
+      solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
+                  options.window_max_iterations, progress, 1.0, 1.0, &report, held_from);
+      if (last == n - 1) break;
+    }
+  };
   auto solve_global = [&](int max_iterations, double begin, double end) {
     if (limit == 0 || problem.observations.size() <= limit) {
       solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
       return;
     }
     thinned_any = true;
-    std::vector<BundleObservation> all = thinned(problem.observations, problem.points.size(), limit);
+    std::vector<BundleObservation> all = thinned(problem.observations, limit);
+    // Points left out of the pass (too many for even three observations each) do not move with it: each
+    // is then triangulated anew from the moved poses (or, where its rays are too near parallel, carried by
+    // the motion of the first pose that saw it), so that the outlier test and the windows after start from
+    // where its poses went (left behind, a sixth of all observations were dropped as outliers).
+    std::vector<char> in_pass(problem.points.size(), 0);
+    for (const BundleObservation& o : all) in_pass[static_cast<std::size_t>(o.point)] = 1;
+    std::vector<char> observed(problem.points.size(), 0);
+    for (const BundleObservation& o : problem.observations) observed[static_cast<std::size_t>(o.point)] = 1;
+    bool subset = false;
+    for (std::size_t q = 0; q < in_pass.size() && !subset; ++q) subset = observed[q] && !in_pass[q];
+    const std::vector<Eigen::Vector3d> poses_before = subset ? problem.poses : std::vector<Eigen::Vector3d>();
     std::swap(all, problem.observations);
     solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
     std::swap(all, problem.observations);
+    if (!subset) return;
+    retriangulate(problem, in_pass);
+    for (std::size_t q = 0; q < in_pass.size(); ++q) {
+      const int k = first_pose_of_point[q];
+      if (in_pass[q] || k >= n) continue;  // in_pass: also the points retriangulate() placed
+      const Eigen::Vector3d &before = poses_before[static_cast<std::size_t>(k)],
+                            &after = problem.poses[static_cast<std::size_t>(k)];
+      const double turn = after.z() - before.z(), c = std::cos(turn), s = std::sin(turn);
+      Eigen::Vector3d& point = problem.points[q];
+      const double dx = point.x() - before.x(), dy = point.y() - before.y();
+      point.x() = after.x() + c * dx - s * dy;
+      point.y() = after.y() + s * dx + c * dy;
+    }
+    // With only some points in the pass, each pose was fixed by a few of them: the detail comes back before
+    // anything is judged an outlier against it.
+    restore_detail();
   };
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
@@ -308,30 +424,20 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
         std::nth_element(point_rms.begin(), point_rms.begin() + point_rms.size() / 2, point_rms.end());
         point_limit = options.point_outlier_factor * point_rms[point_rms.size() / 2];
       }
-      std::vector<BundleObservation> kept;
-      kept.reserve(problem.observations.size());
+      // Compacted in place: a second copy of tens of millions of observations is what a long capture
+      // cannot afford.
+      std::vector<BundleObservation>& obs = problem.observations;
+      std::size_t kept = 0;
       for (size_t k = 0; k < errors.size(); ++k) {
-        const int q = problem.observations[k].point;
+        const int q = obs[k].point;
         if (errors[k] <= options.outlier_threshold && std::sqrt(point_sum[q] / point_count[q]) <= point_limit)
-          kept.push_back(problem.observations[k]);
+          obs[kept++] = obs[k];
       }
-      report.outliers_removed = static_cast<int>(problem.observations.size() - kept.size());
-      problem.observations = std::move(kept);
+      report.outliers_removed = static_cast<int>(obs.size() - kept);
+      obs.resize(kept);
       solve_global(std::max(1, options.global_max_iterations / 2), split, 1.0);
     }
-    // A thinned global pass fixed the path's shape; windows against every observation, each holding its
-    // first and last poses (so the shape stays), restore the detail the thinning left out.
-    if (thinned_any) {
-      const int size = options.window_keyframes > 0 ? options.window_keyframes : 80;
-      const int overlap = std::min(options.window_overlap, size / 4);
-      for (int first = 0; first + overlap < n; first += size - 2 * overlap) {
-        const int last = std::min(n - 1, first + size - 1);
-        const int held_from = last == n - 1 ? n : last - overlap + 1;
-        solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
-                    options.window_max_iterations, progress, 1.0, 1.0, &report, held_from);
-        if (last == n - 1) break;
-      }
-    }
+    if (thinned_any) restore_detail();
   }
   report.final_rms = rms(observation_errors(problem));
   return report;

@@ -15,7 +15,13 @@ namespace plenopath {
 struct BundleObservation {
   int pose = 0;
   int point = 0;
-  Eigen::Vector3d bearing = Eigen::Vector3d::UnitX();  // unit, camera frame
+  // Unit, camera frame, kept in single precision (1e-7 rad, far below a pixel's 6e-3 at 1024 wide): 20 bytes
+  // an observation instead of 32, and a 100 000-frame walk makes over 20 million of them.
+  Eigen::Vector3f bearing_f = Eigen::Vector3f::UnitX();
+  BundleObservation() = default;
+  BundleObservation(int pose_index, int point_index, const Eigen::Vector3d& unit_bearing)
+      : pose(pose_index), point(point_index), bearing_f(unit_bearing.cast<float>()) {}
+  Eigen::Vector3d bearing() const { return bearing_f.cast<double>(); }
 };
 
 struct BundleProblem {

@@ -64,7 +64,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   };
   const EgomotionOptions& opt = *m.options;
   const TrackView& view = *m.view;
-  const std::vector<FeatureTrack>& tracks = view.tracks();
+  const int track_count = view.track_count();
   const std::vector<double>& heading = m.heading;
   const PlanarTwoViewOptions& two_view = m.two_view;
   const RefinementOptions& refinement = m.refinement;
@@ -72,7 +72,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   std::vector<PathFrame>& frames = *frames_out;
   const int first = plan.first, last = plan.last;
   PieceSolution result;
-  auto observation = [&](int t, int frame) { return view.observation(t, frame); };
+  auto observation = [&](int t, int frame) { return view.seen(t, frame); };
   auto bearing = [&](int t, int frame) { return view.bearing(t, frame); };
   // The joins inside this piece, by their first frame.
   std::map<int, const CaptureJoin*> join_at;
@@ -99,14 +99,14 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     if (m.textureless[f] && !join_side) continue;
     const int kf = keyframes.back();
     std::vector<double> parallax;
-    for (int t : view.frame_tracks[kf]) {
+    for (int t : view.frame_tracks(kf)) {
       if (!observation(t, f)) continue;
       const Eigen::Vector3d a = rotate_z(bearing(t, kf), heading[kf]);
       const Eigen::Vector3d b = rotate_z(bearing(t, f), heading[f]);
       parallax.push_back(std::atan2(a.cross(b).norm(), a.dot(b)));
     }
     const double shared =
-        view.frame_tracks[kf].empty() ? 0.0 : double(parallax.size()) / view.frame_tracks[kf].size();
+        view.frame_tracks(kf).empty() ? 0.0 : double(parallax.size()) / view.frame_tracks(kf).size();
     const bool cut = median(parallax) > opt.keyframe_parallax_deg * kDeg ||
                      shared < opt.keyframe_min_shared || parallax.size() < 60 ||
                      std::abs(heading[f] - heading[kf]) > opt.keyframe_max_turn_deg * kDeg || f == last ||
@@ -121,8 +121,8 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   // ---- 2b. chain the chunks: direction by two-view RANSAC, length by resection against known points
   std::vector<Eigen::Vector3d> kf_pose(kfn, Eigen::Vector3d::Zero());
   kf_pose[0].z() = heading[keyframes[0]];
-  std::vector<Eigen::Vector3d> point(tracks.size(), Eigen::Vector3d::Zero());
-  std::vector<char> point_valid(tracks.size(), 0);
+  std::vector<Eigen::Vector3d> point(static_cast<std::size_t>(track_count), Eigen::Vector3d::Zero());
+  std::vector<char> point_valid(static_cast<std::size_t>(track_count), 0);
   std::vector<bool> kf_bridged(kfn, false);
   // Speeds (length per frame) rather than keyframe steps: keyframes are a varying number of frames apart,
   // and a gap bridged with the last step's length instead of the last speed shrinks (or stretches) the scale
@@ -131,11 +131,10 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   std::vector<double> recent_speeds;  // the last measured keyframe steps per frame
   double last_speed = 0.0, last_direction = kf_pose[0].z();
   auto triangulate_track = [&](int t, int up_to_kf) {
-    const auto& obs = tracks[t].observations;
+    const int track_first = view.klt->first_frame(t), track_last = view.klt->last_frame(t);
     std::vector<Eigen::Vector3d> centres, dirs;
-    const auto start =
-        std::lower_bound(keyframes.begin(), keyframes.begin() + up_to_kf + 1, obs.front().frame);
-    for (auto it = start; it != keyframes.begin() + up_to_kf + 1 && *it <= obs.back().frame; ++it) {
+    const auto start = std::lower_bound(keyframes.begin(), keyframes.begin() + up_to_kf + 1, track_first);
+    for (auto it = start; it != keyframes.begin() + up_to_kf + 1 && *it <= track_last; ++it) {
       const int k = static_cast<int>(it - keyframes.begin());
       centres.emplace_back(kf_pose[k].x(), kf_pose[k].y(), 0.0);
       dirs.push_back(rotate_z(bearing(t, *it), kf_pose[k].z()));
@@ -164,7 +163,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     } else {
       std::vector<Eigen::Vector3d> ba, bb;
       std::vector<int> shared;
-      for (int t : view.frame_tracks[a]) {
+      for (int t : view.frame_tracks(a)) {
         if (!observation(t, b)) continue;
         ba.push_back(bearing(t, a));
         bb.push_back(bearing(t, b));
@@ -239,7 +238,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
         if (recent_speeds.size() > 9) recent_speeds.erase(recent_speeds.begin());
       }
     }
-    for (int t : view.frame_tracks[b]) triangulate_track(t, k);
+    for (int t : view.frame_tracks(b)) triangulate_track(t, k);
     if (k % 16 == 0) report("chaining", double(k) / kfn);
   }
 
@@ -267,17 +266,32 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   // ---- 3. refinement of keyframes and points
   BundleProblem problem;
   problem.poses = kf_pose;
-  std::vector<int> point_of_track(tracks.size(), -1);
-  std::set<int> piece_tracks;
-  for (int f = first; f <= last; ++f)
-    piece_tracks.insert(view.frame_tracks[f].begin(), view.frame_tracks[f].end());
-  for (int t : piece_tracks) {
+  std::vector<int> point_of_track(static_cast<std::size_t>(track_count), -1);
+  {
+    // Reserved up front (an upper bound: the keyframes within each track's span): a long capture's tens of
+    // millions of observations must not be copied as the vector doubles.
+    std::size_t observations = 0, points = 0;
+    for (int t = 0; t < track_count; ++t) {
+      const int track_first = view.klt->first_frame(t), track_last = view.klt->last_frame(t);
+      if (track_last < first || track_first > last) continue;
+      const auto a = std::lower_bound(keyframes.begin(), keyframes.end(), track_first);
+      const auto b = std::upper_bound(keyframes.begin(), keyframes.end(), track_last);
+      if (b - a < opt.min_point_keyframes) continue;
+      observations += static_cast<std::size_t>(b - a);
+      ++points;
+    }
+    problem.observations.reserve(observations);
+    problem.points.reserve(points);
+  }
+  for (int t = 0; t < track_count; ++t) {
+    // The tracks seen in this piece (in increasing order, as a set of them would be).
+    const int track_first = view.klt->first_frame(t), track_last = view.klt->last_frame(t);
+    if (track_last < first || track_first > last) continue;
     triangulate_track(t, kfn - 1);
     if (!point_valid[t]) continue;
     std::vector<BundleObservation> obs;
-    const auto& to = tracks[t].observations;
-    for (auto it = std::lower_bound(keyframes.begin(), keyframes.end(), to.front().frame);
-         it != keyframes.end() && *it <= to.back().frame; ++it) {
+    for (auto it = std::lower_bound(keyframes.begin(), keyframes.end(), track_first);
+         it != keyframes.end() && *it <= track_last; ++it) {
       const int k = static_cast<int>(it - keyframes.begin());
       const Eigen::Vector3d b = bearing(t, *it);
       // A tilted camera's bearings are off the planar model by up to its tilt until the refinement knows it.
@@ -309,11 +323,8 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     std::vector<double> steps;
     for (int k = 1; k < kfn; ++k) steps.push_back(kf_travelled[k] - kf_travelled[k - 1]);
     const std::vector<Eigen::Vector3d> kf_now = problem.poses;
-    std::vector<FrameDescriptors> described;
-    for (const FrameDescriptors& d : *m.described)
-      if (d.frame >= first && d.frame <= last) described.push_back(d);
     std::vector<LoopMatch> loops = find_loop_closures(
-        described, [&](int f) { return interpolate(kf_now, f); },
+        *m.described, first, last, [&](int f) { return interpolate(kf_now, f); },
         [&](int f) {
           const int k1 =
               static_cast<int>(std::upper_bound(keyframes.begin(), keyframes.end(), f) - keyframes.begin());
@@ -370,7 +381,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     Eigen::Vector3d& pf = pose[f - first];
     pf = interpolate(refined_kf, f);
     std::vector<Eigen::Vector3d> pts, brs;
-    for (int t : view.frame_tracks[f]) {
+    for (int t : view.frame_tracks(f)) {
       if (point_of_track[t] < 0) continue;
       if (!point_alive[point_of_track[t]]) continue;
       pts.push_back(problem.points[point_of_track[t]]);
@@ -474,24 +485,24 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
   }
   // ... and the refined points with it (the same gauge as the poses, z scaled alike: floor at -h).
   // Each point tied to the middle of the keyframes that saw it (the plan refinement moves it with that pose).
-  std::vector<int> seen_by(problem.points.size(), 0);
-  std::vector<std::vector<int>> seen_from(problem.points.size());
-  for (const auto& o : problem.observations) {
-    ++seen_by[o.point];
-    seen_from[o.point].push_back(o.pose);
-  }
+  // (The observations sorted by point, then pose, in place: the problem is not needed any more, and lists
+  // per point would cost a hundred bytes for each of a long capture's millions of points.)
+  std::vector<BundleObservation>& obs = problem.observations;
+  std::sort(obs.begin(), obs.end(), [](const BundleObservation& a, const BundleObservation& b) {
+    return a.point != b.point ? a.point < b.point : a.pose < b.pose;
+  });
   result.tracked_points.reserve(problem.points.size());
-  for (std::size_t i = 0; i < problem.points.size(); ++i) {
-    if (seen_by[i] == 0) continue;
-    const Eigen::Vector3d& q = problem.points[i];
+  for (std::size_t k = 0; k < obs.size();) {
+    std::size_t e = k + 1;
+    while (e < obs.size() && obs[e].point == obs[k].point) ++e;
+    const Eigen::Vector3d& q = problem.points[static_cast<std::size_t>(obs[k].point)];
     PathPoint p;
     p.position =
         rotate_z(Eigen::Vector3d(q.x() - pose[0].x(), q.y() - pose[0].y(), q.z()), -pose[0].z()) * scale;
-    p.observations = seen_by[i];
-    std::vector<int>& from = seen_from[i];
-    std::nth_element(from.begin(), from.begin() + from.size() / 2, from.end());
-    p.frame = frames[keyframes[from[from.size() / 2]]].index;
+    p.observations = static_cast<int>(e - k);
+    p.frame = frames[keyframes[obs[k + (e - k) / 2].pose]].index;
     result.tracked_points.push_back(p);
+    k = e;
   }
   report("resection", 1.0);
   return result;

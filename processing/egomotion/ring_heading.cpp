@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <deque>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
@@ -274,75 +275,82 @@ RingShift circular_phase_correlation(const std::vector<double>& a, const std::ve
   return r;
 }
 
-RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options,
-                                 const std::vector<double>* column_weights) {
-  options.check();
-  RingHeadings out;
-  const int n = static_cast<int>(rings.size());
-  out.headings.assign(n, 0.0);
-  out.step_peak.assign(n, 0.0);
-  out.failed.assign(n, false);
-  if (n == 0) return out;
-  const int w = static_cast<int>(rings[0].size());
-  for (const auto& r : rings)
-    if (static_cast<int>(r.size()) != w) throw Error("ring headings: rings differ in length");
-  const double px_per_rad = w / (2.0 * kPi);
-  const double max_step_px = options.max_turn_deg_per_frame * kPi / 180.0 * px_per_rad;
-  std::vector<double> window = axis_window(w, options.axis_floor);
-  if (column_weights) {
-    if (static_cast<int>(column_weights->size()) != w)
-      throw Error("ring headings: column weights differ in length from the rings");
-    for (int u = 0; u < w; ++u) window[u] *= (*column_weights)[u];
-  }
+RingRegistrar::RingRegistrar(const RingOptions& options, const std::vector<double>* column_weights)
+    : options_(options) {
+  options_.check();
+  if (column_weights) column_weights_ = *column_weights;
+  for (int offset : options_.frame_offsets) max_offset_ = std::max(max_offset_, offset);
+}
 
-  struct Pair {
-    int i, j;  // j > i
-    double delta;
-    double weight;
-  };
-  std::vector<Pair> pairs;
-  // Chain first (consecutive), then longer offsets centred on the chained prediction.
-  std::vector<double> chained(n, 0.0);
-  for (int j = 1; j < n; ++j) {
-    const RingShift s = circular_phase_correlation(rings[j - 1], rings[j], 0.0, max_step_px, &window,
-                                                   options.max_frequency_fraction);
-    out.step_peak[j] = s.peak;
-    if (s.valid && s.peak >= options.min_peak) {
-      chained[j] = chained[j - 1] + s.shift_px / px_per_rad;
-      pairs.push_back({j - 1, j, s.shift_px / px_per_rad, s.peak});
+RingShift RingRegistrar::add(const std::vector<double>& ring) {
+  const int j = frame_count_++;
+  if (j == 0) {
+    width_ = static_cast<int>(ring.size());
+    window_ = axis_window(width_, options_.axis_floor);
+    if (!column_weights_.empty()) {
+      if (static_cast<int>(column_weights_.size()) != width_)
+        throw Error("ring headings: column weights differ in length from the rings");
+      for (int u = 0; u < width_; ++u) window_[u] *= column_weights_[u];
+    }
+  } else if (static_cast<int>(ring.size()) != width_) {
+    throw Error("ring headings: rings differ in length");
+  }
+  const double px_per_rad = width_ / (2.0 * kPi);
+  const double max_step_px = options_.max_turn_deg_per_frame * kPi / 180.0 * px_per_rad;
+  step_peak_.push_back(0.0);
+  failed_.push_back(false);
+  chained_.push_back(0.0);
+  RingShift step;
+  if (j > 0) {
+    // Chain first (the consecutive registration), then longer offsets centred on the chained prediction.
+    step = circular_phase_correlation(recent_.back(), ring, 0.0, max_step_px, &window_,
+                                      options_.max_frequency_fraction);
+    step_peak_[j] = step.peak;
+    if (step.valid && step.peak >= options_.min_peak) {
+      chained_[j] = chained_[j - 1] + step.shift_px / px_per_rad;
+      pairs_.push_back({j - 1, j, step.shift_px / px_per_rad, step.peak});
     } else {
-      chained[j] = chained[j - 1];
-      out.failed[j] = true;
+      chained_[j] = chained_[j - 1];
+      failed_[j] = true;
     }
-  }
-  for (int offset : options.frame_offsets) {
-    if (offset == 1) continue;
-    for (int j = offset; j < n; ++j) {
+    for (int offset : options_.frame_offsets) {
+      if (offset == 1 || offset > j) continue;
       const int i = j - offset;
-      const double predicted = (chained[j] - chained[i]) * px_per_rad;
+      const double predicted = (chained_[j] - chained_[i]) * px_per_rad;
       const double tolerance = std::min(max_step_px, std::max(4.0, 0.25 * max_step_px * offset));
-      const RingShift s = circular_phase_correlation(rings[i], rings[j], predicted, tolerance, &window,
-                                                     options.max_frequency_fraction);
-      if (!s.valid || s.peak < options.min_peak) continue;
-      pairs.push_back({i, j, s.shift_px / px_per_rad, s.peak});
-      out.failed[j] = false;
+      const std::vector<double>& earlier = recent_[recent_.size() - static_cast<std::size_t>(offset)];
+      const RingShift s = circular_phase_correlation(earlier, ring, predicted, tolerance, &window_,
+                                                     options_.max_frequency_fraction);
+      if (!s.valid || s.peak < options_.min_peak) continue;
+      pairs_.push_back({i, j, s.shift_px / px_per_rad, s.peak});
+      failed_[j] = false;
     }
   }
-  out.registrations = static_cast<int>(pairs.size());
-  out.headings = chained;
-  if (n == 1 || pairs.empty()) return out;
+  recent_.push_back(ring);
+  if (static_cast<int>(recent_.size()) > max_offset_) recent_.pop_front();
+  return step;
+}
+
+RingHeadings RingRegistrar::solve() const {
+  RingHeadings out;
+  const int n = frame_count_;
+  out.headings = chained_;
+  out.step_peak = step_peak_;
+  out.failed = failed_;
+  out.registrations = static_cast<int>(pairs_.size());
+  if (n <= 1 || pairs_.empty()) return out;
 
   // Joint robust least squares: theta_j - theta_i = delta, theta_0 = 0 (the gauge).
   const double huber = 0.3 * kPi / 180.0;
-  std::vector<double> robust(pairs.size(), 1.0);
+  std::vector<double> robust(pairs_.size(), 1.0);
   for (int iteration = 0; iteration < 4; ++iteration) {
     std::vector<Eigen::Triplet<double>> triplets;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n - 1);
     auto add = [&](int r, int c, double v) {
       if (r > 0 && c > 0) triplets.emplace_back(r - 1, c - 1, v);
     };
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      const Pair& p = pairs[k];
+    for (size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
       const double wgt = p.weight * robust[k];
       add(p.i, p.i, wgt);
       add(p.j, p.j, wgt);
@@ -364,12 +372,19 @@ RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, 
     if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd theta = solver.solve(rhs);
     for (int j = 1; j < n; ++j) out.headings[j] = theta[j - 1];
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      const double r = std::abs(out.headings[pairs[k].j] - out.headings[pairs[k].i] - pairs[k].delta);
+    for (size_t k = 0; k < pairs_.size(); ++k) {
+      const double r = std::abs(out.headings[pairs_[k].j] - out.headings[pairs_[k].i] - pairs_[k].delta);
       robust[k] = r <= huber ? 1.0 : huber / r;
     }
   }
   return out;
+}
+
+RingHeadings solve_ring_headings(const std::vector<std::vector<double>>& rings, const RingOptions& options,
+                                 const std::vector<double>* column_weights) {
+  RingRegistrar registrar(options, column_weights);
+  for (const std::vector<double>& ring : rings) registrar.add(ring);
+  return registrar.solve();
 }
 
 }  // namespace plenopath

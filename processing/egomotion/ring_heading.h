@@ -3,6 +3,7 @@
 // mean of an equirectangular frame over a latitude band, each row weighted by the angle it subtends
 // (cos elevation). A pure rotation about the vertical is an exact circular shift of the ring, so circular
 // 1-D phase correlation with a sub-pixel peak gives the heading change: shift (pixels) x 2pi / w.
+#include <deque>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -61,6 +62,33 @@ struct RingHeadings {
   std::vector<double> step_peak;  // correlation peak of frame i against frame i-1 (0 for frame 0)
   std::vector<bool> failed;       // frame had no valid registration against any earlier frame
   int registrations = 0;          // pairwise registrations used in the joint solve
+};
+
+// The same, streaming: rings are added in capture order and registered against the earlier ones as they
+// come, keeping only the last max(frame_offsets) rings, so a long capture's memory is its registrations (a
+// few dozen bytes a frame), not its rings (8 KB a frame at 1024 wide). solve() runs the joint solve.
+class RingRegistrar {
+ public:
+  explicit RingRegistrar(const RingOptions& options, const std::vector<double>* column_weights = nullptr);
+  // Registers the next frame's ring; returns its registration against the frame before (invalid for the
+  // first frame, or when it failed: see RingOptions::min_peak).
+  RingShift add(const std::vector<double>& ring);
+  int frame_count() const { return frame_count_; }
+  RingHeadings solve() const;
+
+ private:
+  struct Pair {
+    int i, j;  // j > i
+    double delta;
+    double weight;
+  };
+  RingOptions options_;
+  std::vector<double> column_weights_, window_;
+  int max_offset_ = 1, width_ = 0, frame_count_ = 0;
+  std::deque<std::vector<double>> recent_;  // the last max_offset_ rings
+  std::vector<double> chained_, step_peak_;
+  std::vector<bool> failed_;
+  std::vector<Pair> pairs_;
 };
 
 // Registers every ring against several earlier ones (RingOptions::frame_offsets) and solves all headings
