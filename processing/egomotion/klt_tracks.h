@@ -131,7 +131,8 @@ class KltTracker {
   int frame_count_ = 0;
   double quantum_ = 1.0 / 64.0;  // pixels per packed unit: width / 65536
   std::vector<StoredTrack> stored_;
-  std::deque<Packed> closed_;  // blocks, not one array: no doubling of hundreds of MB as it grows               // ended tracks' observations, each track's consecutive
+  std::deque<Packed> closed_;  // blocks, not one array: no doubling of hundreds of MB as it grows // ended
+                               // tracks' observations, each track's consecutive
   std::vector<std::vector<Packed>> open_;    // live tracks' observations, by slot
   std::vector<int> free_open_;               // unused slots of open_
   std::vector<int> live_;                    // indices of tracks observed in the last frame
