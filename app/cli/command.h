@@ -30,6 +30,7 @@ Command add_plan_info_command(CLI::App& parent);
 Command add_refine_command(CLI::App& parent);
 Command add_register_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
+Command add_render_scene_command(CLI::App& parent);
 Command add_sample_command(CLI::App& parent);
 Command add_stitch_command(CLI::App& parent);
 Command add_track_command(CLI::App& parent);

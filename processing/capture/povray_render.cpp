@@ -1,0 +1,208 @@
+#include "processing/capture/povray_render.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "model/error.h"
+#include "model/option_check.h"
+
+namespace plenopath {
+namespace fs = std::filesystem;
+namespace {
+
+std::string tail_of_file(const std::string& file, std::size_t bytes) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return all.size() > bytes ? "..." + all.substr(all.size() - bytes) : all;
+}
+
+// Runs argv in `cwd` with stdout and stderr to `log`; polls for a cancel and the timeout. Returns the exit
+// status (-1 when it did not exit normally).
+int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log,
+                double timeout_s, Progress& progress) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw Error("POV-Ray: cannot start a process");
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    if (chdir(cwd.c_str()) != 0) _exit(126);
+    execvp(args[0], args.data());
+    _exit(127);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    int status = 0;
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress.is_cancelled() || elapsed > timeout_s) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      progress.throw_if_cancelled();
+      throw Error("POV-Ray took longer than " + std::to_string(static_cast<int>(timeout_s)) +
+                  " s for a pass");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+std::string pov_vector(double x, double y, double z) {
+  char text[160];
+  std::snprintf(text, sizeof text, "<%.9g, %.9g, %.9g>", x, y, z);
+  return text;
+}
+
+}  // namespace
+
+void PovrayOptions::check() const {
+  const std::string s = "PovrayOptions.";
+  require_option(!executable.empty(), s + "executable", "must name the povray program", executable);
+  require_option(width >= 16 && width % 2 == 0, s + "width", "must be even and >= 16", width);
+  require_option(std::isfinite(camera_height_m), s + "camera_height_m", "must be finite", camera_height_m);
+  require_option(units_per_metre > 0 && std::isfinite(units_per_metre), s + "units_per_metre", "must be > 0",
+                 units_per_metre);
+  require_option(depth_fog_m >= 0 && std::isfinite(depth_fog_m), s + "depth_fog_m", "must be >= 0 (0 = 8 m)",
+                 depth_fog_m);
+  require_option(max_depth_m > 0, s + "max_depth_m", "must be > 0", max_depth_m);
+  require_option(quality >= 0 && quality <= 11, s + "quality", "must be in [0, 11]", quality);
+  require_option(timeout_s > 0, s + "timeout_s", "must be > 0", timeout_s);
+}
+
+std::string find_povray(const std::string& executable) {
+  auto runnable = [](const fs::path& p) { return access(p.c_str(), X_OK) == 0 && !fs::is_directory(p); };
+  if (executable.find('/') != std::string::npos) {
+    if (runnable(executable)) return executable;
+    throw Error("POV-Ray: " + executable + " is not an executable program");
+  }
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string dir;
+  while (std::getline(dirs, dir, ':'))
+    if (!dir.empty() && runnable(fs::path(dir) / executable)) return (fs::path(dir) / executable).string();
+  throw Error("POV-Ray (" + executable +
+              ") is not installed: `sudo apt-get install povray` (cmake/install-deps.sh installs it)");
+}
+
+PovrayFrame render_povray_frame(const std::string& scene_file, const PathFrame& pose, const PovrayOptions& o,
+                                const std::string& work_dir, Progress& progress) {
+  o.check();
+  const fs::path scene = fs::absolute(scene_file);
+  if (!fs::is_regular_file(scene)) throw Error("POV-Ray scene " + scene_file + ": no such file");
+  const std::string povray = find_povray(o.executable);
+  const int height = o.width / 2;
+  const double u = o.units_per_metre;
+  const double fog_m = o.depth_fog_m > 0 ? o.depth_fog_m : 8.0;
+  // The camera basis in POV coordinates: forward along the heading, right 90 deg clockwise of it.
+  const double c = std::cos(pose.heading), s = std::sin(pose.heading);
+  const std::string camera = "camera {\n  spherical\n  angle 360 180\n  location " +
+                             pov_vector(pose.x * u, o.camera_height_m * u, pose.y * u) + "\n  direction " +
+                             pov_vector(c, 0, s) + "\n  right " + pov_vector(s, 0, -c) + "\n  up " +
+                             pov_vector(0, 1, 0) + "\n}\n";
+  auto pass = [&](const std::string& name, const std::string& extra_sdl,
+                  const std::vector<std::string>& flags) {
+    const fs::path wrapper = fs::path(work_dir) / (name + ".pov");
+    {
+      std::ofstream out(wrapper);
+      out << "// Written by Plenopath Studio: the author's scene, seen by the studio's spherical camera.\n"
+          << "#include \"" << scene.string() << "\"\n"
+          << camera << extra_sdl;
+      if (!out) throw Error("POV-Ray: cannot write " + wrapper.string());
+    }
+    const fs::path image = fs::path(work_dir) / (name + ".png");
+    const fs::path log = fs::path(work_dir) / (name + ".log");
+    fs::remove(image);
+    std::vector<std::string> argv = {povray,
+                                     "+I" + wrapper.string(),
+                                     "+O" + image.string(),
+                                     "+L" + scene.parent_path().string(),
+                                     "+W" + std::to_string(o.width),
+                                     "+H" + std::to_string(height),
+                                     "-D",
+                                     "-V",
+                                     "+WT1"};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    const int status = run_process(argv, scene.parent_path().string(), log.string(), o.timeout_s, progress);
+    if (status != 0 || !fs::exists(image))
+      throw Error("POV-Ray failed on " + scene_file + " (" + name + " pass, exit " + std::to_string(status) +
+                  "):\n" + tail_of_file(log.string(), 1500));
+    cv::Mat m = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
+    if (m.empty() || m.cols != o.width || m.rows != height)
+      throw Error("POV-Ray wrote no readable " + std::to_string(o.width) + "x" + std::to_string(height) +
+                  " image for " + scene_file + " (" + name + " pass)");
+    return m;
+  };
+  PovrayFrame frame;
+  std::vector<std::string> colour_flags = {"+FN8", "+Q" + std::to_string(o.quality)};
+  colour_flags.push_back(o.antialias ? "+A0.3" : "-A");
+  cv::Mat rgb = pass("colour", "", colour_flags);
+  if (rgb.channels() == 4) cv::cvtColor(rgb, rgb, cv::COLOR_BGRA2BGR);
+  if (rgb.channels() == 1) cv::cvtColor(rgb, rgb, cv::COLOR_GRAY2BGR);
+  if (rgb.depth() == CV_16U) rgb.convertTo(rgb, CV_8U, 1.0 / 257.0);
+  frame.rgb = rgb;
+  progress.checkpoint(o.depth ? 0.6 : 1.0);
+  if (!o.depth) return frame;
+  const double fog_units = fog_m * u;
+  // Fog needs quality 9 (POV-Ray's atmosphere); max_trace_level 1 keeps reflected and refracted rays out.
+  const std::vector<std::string> depth_flags = {"+FN16", "File_Gamma=1.0", "-A", "+Q9"};
+  auto fog = [&](int white) {
+    return "global_settings { max_trace_level 1 }\nfog { fog_type 1 distance " + std::to_string(fog_units) +
+           " color rgb " + std::to_string(white) + " }\n";
+  };
+  cv::Mat black = pass("depth_black", fog(0), depth_flags), white = pass("depth_white", fog(1), depth_flags);
+  progress.checkpoint(1.0);
+  if (black.size() != white.size() || black.depth() != CV_16U || white.depth() != CV_16U)
+    throw Error("POV-Ray wrote depth passes that are not 16-bit for " + scene_file);
+  frame.depth = cv::Mat(height, o.width, CV_32F, cv::Scalar(0));
+  const int channels = black.channels();
+  // POV-Ray puts fog only where a ray runs through empty or hollow space: a camera inside a solid object
+  // (a room modelled as a box, not declared hollow) shows none, and there is no depth to code.
+  {
+    cv::Mat difference;
+    cv::absdiff(white, black, difference);
+    if (cv::countNonZero(difference.reshape(1)) < static_cast<int>(difference.total()) / 100)
+      throw Error("POV-Ray scene " + scene_file +
+                  ": the depth passes show no fog, so no depth: the camera is inside an object that is not "
+                  "hollow (add `hollow` to the object around the camera, e.g. the room's box)");
+  }
+  for (int r = 0; r < height; ++r) {
+    const std::uint16_t* b = black.ptr<std::uint16_t>(r);
+    const std::uint16_t* w = white.ptr<std::uint16_t>(r);
+    float* d = frame.depth.ptr<float>(r);
+    for (int col = 0; col < o.width; ++col) {
+      // The channels agree (fog is grey); their mean lowers the quantisation noise.
+      double fogged = 0.0;
+      for (int k = 0; k < std::min(channels, 3); ++k)
+        fogged += (double(w[col * channels + k]) - double(b[col * channels + k])) / 65535.0;
+      fogged /= std::min(channels, 3);
+      const double t = 1.0 - fogged;
+      if (!(t > 0.0)) continue;  // fully fogged: sky
+      const double metres = -fog_m * std::log(std::min(1.0, t));
+      if (metres < o.max_depth_m) d[col] = static_cast<float>(metres);
+    }
+  }
+  return frame;
+}
+
+}  // namespace plenopath

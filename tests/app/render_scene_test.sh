@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# `plenopath render-scene`: the author's POV-Ray scene along waypoints, laid out as `render` writes (ground
+# truth, frames, 16-bit depth), headings along the walk, depth that matches the room's walls, and clear errors.
+set -u
+cli=$1
+fail() { echo "FAIL: $*"; exit 1; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+command -v povray > /dev/null || fail "povray is not installed (cmake/install-deps.sh installs it)"
+
+# A room 10 x 6 x 3 m around the plan origin, its own camera (replaced), a sphere.
+cat > "$tmp/room.pov" <<'POV'
+#version 3.7;
+global_settings { assumed_gamma 1.0 }
+camera { location <0, 10, -10> look_at 0 }
+light_source { <2, 2.8, 1> color rgb 1 }
+box { <-5, 0, -3>, <5, 3, 3> inverse pigment { checker rgb <0.8, 0.7, 0.6> rgb <0.2, 0.3, 0.4> scale 0.5 } }
+sphere { <2, 1, 1.5>, 0.5 pigment { rgb 1 } }
+POV
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "-4,0 -2.5,0 -2.5,1" --step 0.5 --size 64x32 \
+  --out "$tmp/out" --quiet || fail "render-scene exit $?"
+[[ $(ls "$tmp/out/frames" | wc -l) -eq 6 ]] || fail "expected 6 frames, got $(ls "$tmp/out/frames" | wc -l)"
+[[ $(ls "$tmp/out/depth" | wc -l) -eq 6 ]] || fail "expected 6 depth maps"
+[[ ! -e "$tmp/out/.povray" ]] || fail "the work folder was left behind"
+python3 - "$tmp/out" <<'PY' || fail "ground truth or depth content"
+import json, struct, sys, zlib
+out = sys.argv[1]
+g = json.load(open(out + "/groundtruth.json"))
+fr = g["frames"]
+assert len(fr) == 6, len(fr)
+assert fr[0]["x"] == -4.0 and fr[0]["y"] == 0.0 and abs(fr[0]["heading_deg"]) < 1e-9, fr[0]
+assert abs(fr[-1]["y"] - 1.0) < 1e-9 and abs(fr[-1]["heading_deg"] - 90) < 1e-6, fr[-1]
+for i, f in enumerate(fr):
+    assert f["index"] == i and f["file"] == "frames/%06d.jpg" % i, f
+# Frame 0 looks along +x from (-4, 0), 1.6 m up: the pixel just right of the centre of row 16 (elevation
+# -2.8 deg) sees the far wall x = 5 at 9 m / cos(2.8 deg) / cos(2.8 deg azimuth); straight behind, x = -5 at 1 m.
+data = open(out + "/depth/000000.png", "rb").read()
+w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
+assert (w, h, depth, colour) == (64, 32, 16, 0), (w, h, depth, colour)
+chunks, pos = b"", 8
+while pos < len(data):
+    n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    if kind == b"IDAT":
+        chunks += data[pos + 8:pos + 8 + n]
+    pos += 12 + n
+raw = zlib.decompress(chunks)
+# Undo the PNG row filters (2 bytes a pixel, grey 16-bit).
+bpp, stride, rows, prev = 2, 2 * w, [], bytearray(2 * w)
+for v in range(h):
+    kind, line = raw[v * (stride + 1)], bytearray(raw[v * (stride + 1) + 1:(v + 1) * (stride + 1)])
+    for i in range(stride):
+        a = line[i - bpp] if i >= bpp else 0
+        b = prev[i]
+        c = prev[i - bpp] if i >= bpp else 0
+        if kind == 1: line[i] = (line[i] + a) & 255
+        elif kind == 2: line[i] = (line[i] + b) & 255
+        elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
+        elif kind == 4:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(line)
+    prev = line
+def depth_mm(u, v):
+    return struct.unpack(">H", bytes(rows[v][2 * u:2 * u + 2]))[0]
+import math
+el = math.radians(90 - 16.5 / 32 * 180)
+az = math.radians(32.5 / 64 * 360 - 180)
+ahead = 9 / math.cos(el) / math.cos(az)
+behind = 1 / math.cos(el) / math.cos(math.radians(0.5 / 64 * 360))
+assert abs(depth_mm(32, 16) - 1000 * ahead) <= 2, (depth_mm(32, 16), ahead)
+assert abs(depth_mm(0, 16) - 1000 * behind) <= 2, (depth_mm(0, 16), behind)
+PY
+"$cli" capture-info "$tmp/out/frames" > "$tmp/info.txt" 2>&1 || fail "the frames are no capture: $(cat "$tmp/info.txt")"
+
+# Errors: a missing scene, a broken one, no path, a size that is not 2:1, no povray.
+"$cli" render-scene --scene "$tmp/missing.pov" --waypoints "0,0 1,0" --out "$tmp/e1" 2> "$tmp/err" && fail "missing scene accepted"
+grep -q "missing.pov" "$tmp/err" || fail "missing scene error: $(cat "$tmp/err")"
+echo 'sphere { 0, 1' > "$tmp/broken.pov"
+"$cli" render-scene --scene "$tmp/broken.pov" --waypoints "0,0 1,0" --size 32x16 --out "$tmp/e2" 2> "$tmp/err" \
+  && fail "broken scene accepted"
+grep -q "POV-Ray failed on .*broken.pov" "$tmp/err" || fail "broken scene error: $(cat "$tmp/err")"
+"$cli" render-scene --scene "$tmp/room.pov" --out "$tmp/e3" 2> "$tmp/err" && fail "no path accepted"
+grep -q -- "--waypoints" "$tmp/err" || fail "no path error: $(cat "$tmp/err")"
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "0,0 1,0" --size 64x64 --out "$tmp/e4" 2> "$tmp/err" \
+  && fail "square size accepted"
+grep -q "2:1" "$tmp/err" || fail "size error: $(cat "$tmp/err")"
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "0,0 1,0" --povray no-such-povray --out "$tmp/e5" 2> "$tmp/err" \
+  && fail "missing povray accepted"
+grep -q "apt-get install povray" "$tmp/err" || fail "no povray error: $(cat "$tmp/err")"
+[[ ! -e "$tmp/e5" ]] || fail "output written although povray is missing"
+echo "render-scene: ok"
