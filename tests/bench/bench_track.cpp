@@ -47,6 +47,16 @@ struct RunSpec {
   int global_limit = -1;  // RefinementOptions::global_max_observations (-1 = the default)
 };
 
+double current_rss_mb() {
+  long pages = 0, resident = 0;
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f) {
+    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    std::fclose(f);
+  }
+  return resident * (sysconf(_SC_PAGESIZE) / 1048576.0);
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -201,6 +211,10 @@ nlohmann::json run(const RunSpec& spec) {
       [&](int i) {
         const auto t = std::chrono::steady_clock::now();
         cv::Mat m = generated ? generated->read(i) : cv::imdecode(jpegs[i], cv::IMREAD_COLOR);
+        // Long runs take an hour or more: a line every 5 000 frames to follow them by.
+        if (generated && i > 0 && i % 5000 == 0)
+          std::cerr << "bench_track: frame " << i << "/" << truth.size() << ", " << i / seconds(t0)
+                    << " frames/s, RSS " << current_rss_mb() << " MB" << std::endl;
         (generated ? render_s : decode_s) += seconds(t);
         return m;
       },
