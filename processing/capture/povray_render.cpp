@@ -31,8 +31,9 @@ std::string tail_of_file(const std::string& file, std::size_t bytes) {
   return all.size() > bytes ? "..." + all.substr(all.size() - bytes) : all;
 }
 
-// Runs argv in `cwd` with stdout and stderr to `log`; polls for a cancel and the timeout. Returns the exit
-// status (-1 when it did not exit normally).
+// Runs argv (argv[0] a path to the program) in `cwd` with stdout and stderr to `log`; polls for a cancel and
+// the timeout. Returns the exit status (-1 when it did not exit normally). Between fork and exec only
+// async-signal-safe calls: the studio calls this from a worker thread.
 int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log,
                 double timeout_s, Progress& progress) {
   std::vector<char*> args;
@@ -48,7 +49,7 @@ int run_process(const std::vector<std::string>& argv, const std::string& cwd, co
       close(fd);
     }
     if (chdir(cwd.c_str()) != 0) _exit(126);
-    execvp(args[0], args.data());
+    execv(args[0], args.data());  // argv[0] is a path (find_povray): no PATH search after fork
     _exit(127);
   }
   const auto start = std::chrono::steady_clock::now();
@@ -93,14 +94,15 @@ void PovrayOptions::check() const {
 std::string find_povray(const std::string& executable) {
   auto runnable = [](const fs::path& p) { return access(p.c_str(), X_OK) == 0 && !fs::is_directory(p); };
   if (executable.find('/') != std::string::npos) {
-    if (runnable(executable)) return executable;
+    if (runnable(executable)) return fs::absolute(executable).string();
     throw Error("POV-Ray: " + executable + " is not an executable program");
   }
   const char* path = std::getenv("PATH");
   std::stringstream dirs(path ? path : "/usr/bin:/bin");
   std::string dir;
   while (std::getline(dirs, dir, ':'))
-    if (!dir.empty() && runnable(fs::path(dir) / executable)) return (fs::path(dir) / executable).string();
+    if (!dir.empty() && runnable(fs::path(dir) / executable))
+      return fs::absolute(fs::path(dir) / executable).string();
   throw Error("POV-Ray (" + executable +
               ") is not installed: `sudo apt-get install povray` (cmake/install-deps.sh installs it)");
 }
