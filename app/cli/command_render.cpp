@@ -37,12 +37,6 @@ struct Options {
   double texels_per_metre = SceneOptions{}.texels_per_metre;
 };
 
-std::string frame_name(int index, const char* ext) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%06d.%s", index, ext);
-  return name;
-}
-
 int run(const Options& o) {
   SceneOptions scene_options;
   scene_options.layers = split_list(o.layers);
@@ -88,7 +82,7 @@ int run(const Options& o) {
   }
   if (path.empty()) throw Error("the path has no frames");
   path.scale_source = "ground_truth";
-  for (auto& f : path.frames) f.file = "frames/" + frame_name(f.index, "jpg");
+  for (auto& f : path.frames) f.file = "frames/" + numbered_file_name(f.index, "jpg");
 
   fs::create_directories(fs::path(o.out) / "frames");
   if (o.depth && !rig) fs::create_directories(fs::path(o.out) / "depth");
@@ -107,13 +101,15 @@ int run(const Options& o) {
     if (rig) {
       const std::vector<cv::Mat> heads = render_heads(scene, *rig, pose, render_options);
       for (std::size_t h = 0; h < heads.size(); ++h)
-        write_image((fs::path(o.out) / "heads" / rig->heads[h].name / frame_name(pose.index, "jpg")).string(),
-                    heads[h], o.jpeg_quality);
+        write_image(
+            (fs::path(o.out) / "heads" / rig->heads[h].name / numbered_file_name(pose.index, "jpg")).string(),
+            heads[h], o.jpeg_quality);
     } else {
       render_panorama(scene, pose, render_options, pano);
       write_image((fs::path(o.out) / pose.file).string(), pano.rgb, o.jpeg_quality);
       if (o.depth)
-        write_depth_png((fs::path(o.out) / "depth" / frame_name(pose.index, "png")).string(), pano.depth);
+        write_depth_png((fs::path(o.out) / "depth" / numbered_file_name(pose.index, "png")).string(),
+                        pano.depth);
     }
     progress.frames(static_cast<int>(i + 1), static_cast<int>(path.size()));
   }

@@ -31,12 +31,6 @@ struct Options {
   bool no_depth = false, no_antialias = false, quiet = false;
 };
 
-std::string frame_name(int index, const char* ext) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%06d.%s", index, ext);
-  return name;
-}
-
 // "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
 // along the path (the direction over the half metre around it, so corners turn smoothly).
 CameraPath walk_waypoints(const std::string& text, double step) {
@@ -101,7 +95,7 @@ int run(const Options& o) {
   if (o.frames > 0 && static_cast<int>(path.size()) > o.frames) path.frames.resize(o.frames);
   if (path.empty()) throw Error("the path has no frames");
   path.scale_source = "ground_truth";
-  for (auto& f : path.frames) f.file = "frames/" + frame_name(f.index, "jpg");
+  for (auto& f : path.frames) f.file = "frames/" + numbered_file_name(f.index, "jpg");
 
   const fs::path out(o.out);
   fs::create_directories(out / "frames");
@@ -116,7 +110,8 @@ int run(const Options& o) {
     SubProgress frame_progress(progress, double(i) / path.size(), double(i + 1) / path.size());
     const PovrayFrame frame = render_povray_frame(o.scene, pose, options, work.string(), frame_progress);
     write_image((out / pose.file).string(), frame.rgb, o.jpeg_quality);
-    if (options.depth) write_depth_png((out / "depth" / frame_name(pose.index, "png")).string(), frame.depth);
+    if (options.depth)
+      write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), frame.depth);
     progress.frames(static_cast<int>(i + 1), static_cast<int>(path.size()));
   }
   progress.finish();

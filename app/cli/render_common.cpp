@@ -54,6 +54,12 @@ void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality
   if (!ok) throw file_error(file, "cannot write image");
 }
 
+std::string numbered_file_name(int index, const char* ext) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%06d.%s", index, ext);
+  return name;
+}
+
 void write_depth_png(const std::string& file, const cv::Mat& depth_m) {
   cv::Mat mm;
   depth_m.convertTo(mm, CV_16U, 1000.0);  // rounds and saturates at 65.535 m
