@@ -157,10 +157,14 @@ class SegmentCells {
       typical = lengths[lengths.size() / 2];
     }
     cell_ = std::max({typical, 8.0 * tolerance, 1e-6});
+    // Past as many cells as there are segments, checking every segment is cheaper than walking the cells
+    // (fuzzed plans of a few hundred long lines spent 10 s under the sanitizers filling and probing them).
+    long_cells_ =
+        std::min(static_cast<double>(kMaxCellsPerSegment), std::max(64.0, static_cast<double>(segs.size())));
     std::vector<std::pair<std::uint64_t, int>> entries;
     entries.reserve(segs.size() * 4);
     for (int i = 0; i < static_cast<int>(segs.size()); ++i) {
-      if (cells_along(segs[i], 0.0) > kMaxCellsPerSegment) {
+      if (cells_along(segs[i], 0.0) > long_cells_) {
         long_.push_back(i);
         continue;
       }
@@ -179,7 +183,7 @@ class SegmentCells {
       out->push_back(j);
     };
     const Seg& s = segs_[query];
-    if (cells_along(s, margin_) > kMaxCellsPerSegment) {
+    if (cells_along(s, margin_) > long_cells_) {
       for (int j = 0; j < static_cast<int>(segs_.size()); ++j) take(j);  // a very long segment meets anything
       return;
     }
@@ -235,6 +239,7 @@ class SegmentCells {
   const std::vector<Seg>& segs_;
   double margin_;
   double cell_ = 1.0;
+  double long_cells_ = kMaxCellsPerSegment;  // a segment along more cells than this is "long"
   CellTable cells_{{}};
   std::vector<int> long_;
   std::vector<int> seen_;  // last query that took each segment
