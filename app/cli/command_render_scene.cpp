@@ -1,15 +1,22 @@
 // `plenopath render-scene --scene SCENE.pov (--path PATH.json | --waypoints "X,Y X,Y ...") [--step 0.1]
 // [--frames N] [--size 2048x1024] [--camera-height 1.6] [--units-per-metre 1] [--no-depth] [--depth-fog 8]
-// [--quality 9] [--no-antialias] [--jpeg-quality Q] [--povray PROGRAM] --out DIR`:
+// [--quality 9] [--no-antialias] [--jpeg-quality Q] [--povray PROGRAM] [--processes N]
+// [--frames-per-process N] [--online [--budget N | --ratio R] [--coarse-width 256]] --out DIR`:
 // the author's own POV-Ray scene rendered with the studio's spherical camera along a path
 // (processing/capture/povray_render.h), colour and depth, with the poses as ground truth. The output is laid
 // out as `plenopath render`'s: DIR/groundtruth.json (the path, with `file` fields), DIR/frames/NNNNNN.jpg,
 // DIR/depth/NNNNNN.png (16-bit millimetres), so `track`, `sample` and the studio take it as a capture.
+// --online renders the whole path as coarse depth first and only the keyframes the depth sampler chooses
+// at full size (processing/sampling/online_sampling.h); the capture is then those keyframes, and
+// DIR/online_sampling.json says how many of the path's frames were rendered at each size.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app/cli/command.h"
@@ -18,6 +25,7 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "processing/capture/povray_render.h"
+#include "processing/sampling/online_sampling.h"
 
 namespace plenopath::cli {
 namespace {
@@ -27,8 +35,12 @@ namespace fs = std::filesystem;
 struct Options {
   std::string scene, path, waypoints, out, size = "2048x1024", povray = "povray";
   double step = 0.1, camera_height = 1.6, units_per_metre = 1.0, depth_fog = 0.0;
-  int frames = 0, quality = 9, jpeg_quality = 92;
+  int frames = 0, quality = 9, jpeg_quality = 92, processes = 0, frames_per_process = 16;
   bool no_depth = false, no_antialias = false, quiet = false;
+  // Online sampling: coarse depth of the whole path, full frames only for the keyframes it gives.
+  bool online = false;
+  int budget = 0, coarse_width = 256;
+  double ratio = 50.0;
 };
 
 // "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
@@ -85,6 +97,8 @@ int run(const Options& o) {
   options.depth_fog_m = o.depth_fog;
   options.quality = o.quality;
   options.antialias = !o.no_antialias;
+  options.processes = o.processes;
+  options.frames_per_process = o.frames_per_process;
   options.check();
   find_povray(options.executable);  // before any output is written
   if (!fs::is_regular_file(o.scene)) throw Error("--scene " + o.scene + ": no such file");
@@ -105,15 +119,70 @@ int run(const Options& o) {
   write_path_file(path, (out / "groundtruth.json").string());
 
   ConsoleProgress progress("render-scene", o.quiet);
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const PathFrame& pose = path.frames[i];
-    SubProgress frame_progress(progress, double(i) / path.size(), double(i + 1) / path.size());
-    const PovrayFrame frame = render_povray_frame(o.scene, pose, options, work.string(), frame_progress);
+  auto write_frame = [&](const PathFrame& pose, const PovrayFrame& frame) {
     write_image((out / pose.file).string(), frame.rgb, o.jpeg_quality);
     if (options.depth)
       write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), frame.depth);
-    progress.frames(static_cast<int>(i + 1), static_cast<int>(path.size()));
+  };
+  if (o.online) {
+    SamplingParameters parameters;
+    parameters.method = SamplingMethod::kDepth;
+    parameters.count = o.budget;
+    parameters.ratio = o.ratio;
+    OnlineSamplingOptions online;
+    online.coarse_width = o.coarse_width;
+    int written = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    double coarse_seconds = 0.0;
+    const OnlineSamplingResult result = sample_online(
+        path, parameters,
+        [&](const std::vector<PathFrame>& poses, int width,
+            const std::function<void(int, const cv::Mat&)>& deliver, Progress& p) {
+          PovrayOptions coarse = options;
+          coarse.width = width;
+          coarse.colour = false;
+          coarse.depth = true;
+          render_povray_frames(
+              o.scene, poses, coarse, work.string(), [&](int i, PovrayFrame&& f) { deliver(i, f.depth); }, p);
+          coarse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        },
+        [&](const std::vector<PathFrame>& poses, Progress& p) {
+          render_povray_frames(
+              o.scene, poses, options, work.string(),
+              [&](int i, PovrayFrame&& f) {
+                write_frame(poses[static_cast<std::size_t>(i)], f);
+                progress.frames(++written, static_cast<int>(poses.size()));
+              },
+              p);
+        },
+        online, progress);
+    progress.finish();
+    fs::remove_all(work);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The capture is the keyframes: the path's other frames were never rendered at full size.
+    CameraPath kept = path;
+    kept.frames.clear();
+    for (int index : result.keyframes.indices) kept.frames.push_back(*path.find_frame(index));
+    write_path_file(kept, (out / "groundtruth.json").string());
+    const nlohmann::json report = {
+        {"path_frames", path.size()},       {"coarse_frames", result.coarse_frames},
+        {"coarse_width", o.coarse_width},   {"full_frames", result.full_frames},
+        {"full_size", {width, height}},     {"keyframes", result.keyframes.indices},
+        {"seconds_coarse", coarse_seconds}, {"seconds_total", seconds}};
+    std::ofstream((out / "online_sampling.json").string()) << report.dump(2) << "\n";
+    if (!o.quiet)
+      std::cerr << "render-scene: online sampling kept " << result.full_frames << " of " << path.size()
+                << " frames (" << path.length() << " m) of " << o.scene << ", rendered at full size into "
+                << o.out << "; the whole path as " << o.coarse_width << "-wide depth first\n";
+    return kExitOk;
   }
+  render_povray_frames(
+      o.scene, path.frames, options, work.string(),
+      [&](int i, PovrayFrame&& frame) {
+        write_frame(path.frames[static_cast<std::size_t>(i)], frame);
+        progress.frames(i + 1, static_cast<int>(path.size()));
+      },
+      progress);
   progress.finish();
   fs::remove_all(work);
   if (!o.quiet)
@@ -150,6 +219,19 @@ Command add_render_scene_command(CLI::App& parent) {
   sub->add_flag("--no-antialias", o->no_antialias, "No antialiasing in the colour pass");
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
   sub->add_option("--povray", o->povray, "The POV-Ray program")->capture_default_str();
+  sub->add_option("--processes", o->processes, "POV-Ray processes at once (0 = the cores + 2)")
+      ->capture_default_str();
+  sub->add_option("--frames-per-process", o->frames_per_process,
+                  "Frames one POV-Ray process renders (animation mode: it idles a quarter second a frame)")
+      ->capture_default_str();
+  sub->add_flag("--online", o->online,
+                "Online sampling: the whole path as coarse depth first, full frames only for the keyframes "
+                "the depth sampler chooses from it");
+  sub->add_option("--budget", o->budget, "Online: at most this many keyframes (0 = by --ratio)")
+      ->capture_default_str();
+  sub->add_option("--ratio", o->ratio, "Online: frames per keyframe when no --budget")->capture_default_str();
+  sub->add_option("--coarse-width", o->coarse_width, "Online: width of the coarse depth pass")
+      ->capture_default_str();
   sub->add_option("--out", o->out, "Output folder")->required();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {sub, [o]() { return run(*o); }};

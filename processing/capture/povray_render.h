@@ -13,8 +13,10 @@
 // Sky (nothing hit) is fully fogged: no depth. A fog or media of the author's own disturbs the coding, and
 // POV-Ray fogs only empty or hollow space: an object around the camera must be `hollow`. Radiosity's
 // gathering rays see the fog too: scenes with radiosity get a rougher depth.
+#include <functional>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "model/camera_path.h"
 #include "processing/util/progress.h"
@@ -26,6 +28,7 @@ struct PovrayOptions {
   int width = 2048;                   // panorama width; the height is half
   double camera_height_m = 1.6;       // camera centre above the plan's floor (POV y = 0)
   double units_per_metre = 1.0;       // scene units in a metre (POV scenes have no unit)
+  bool colour = true;                 // false: depth only (a coarse pass for online sampling)
   bool depth = true;
   // Fog distance of the depth passes (metres): depth resolution is about D / 65535 / exp(-d / D) at
   // distance d (8 m: 0.12 mm at 0, 0.9 mm at 16 m, 6 mm at 32 m). 0 = 8 m.
@@ -33,8 +36,13 @@ struct PovrayOptions {
   double max_depth_m = 200.0;  // farther (or sky): no depth (0 in the depth image)
   bool antialias = true;       // the colour pass (+A0.3); the depth passes never
   int quality = 9;             // the colour pass's +Q (0-11)
-  double timeout_s = 900.0;    // a pass that takes longer is stopped
-  void check() const;          // throws Error naming the bad field
+  double timeout_s = 900.0;    // a pass that takes longer than this a frame is stopped
+  // A POV-Ray process idles about a quarter of a second before and after each frame whatever its size, so
+  // frames are rendered in animation mode, up to frames_per_process by one process, by several processes at
+  // once (0 = the cores + 2; each traces with one thread).
+  int frames_per_process = 16;
+  int processes = 0;
+  void check() const;  // throws Error naming the bad field
 };
 
 struct PovrayFrame {
@@ -51,5 +59,13 @@ std::string find_povray(const std::string& executable);
 PovrayFrame render_povray_frame(const std::string& scene_file, const PathFrame& pose,
                                 const PovrayOptions& options, const std::string& work_dir,
                                 Progress& progress = null_progress());
+
+// Renders every pose, handing each frame to `deliver` in the poses' order (index into `poses`, on the
+// calling thread), a few processes' chunks at a time, so that memory holds only those. Throws as
+// render_povray_frame does; the frames delivered before stay delivered.
+void render_povray_frames(const std::string& scene_file, const std::vector<PathFrame>& poses,
+                          const PovrayOptions& options, const std::string& work_dir,
+                          const std::function<void(int index, PovrayFrame&& frame)>& deliver,
+                          Progress& progress = null_progress());
 
 }  // namespace plenopath

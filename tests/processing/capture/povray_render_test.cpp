@@ -120,6 +120,38 @@ TEST(PovrayRender, DepthAgreesWithTheSceneGeometryToAMillimetre) {
   EXPECT_GT(std::abs(at_wall[0] - at_wall[2]), 10);
 }
 
+// A walk rendered in animation mode, two processes of three frames and one of one: every frame delivered
+// once, in order, each with the depth of its own pose (a mixed-up camera array would put frames at another
+// pose: 0.3 m apart, far above the 1 mm checked). Depth only, as online sampling's coarse pass renders.
+TEST(PovrayRender, AWalkInChunksDeliversEachFrameAtItsOwnPose) {
+  TempDir dir;
+  write_room(dir.path / "room.pov", 1.0);
+  PovrayOptions options;
+  options.width = 160;
+  options.colour = false;
+  options.frames_per_process = 3;
+  options.processes = 2;
+  std::vector<PathFrame> walk(7);
+  for (int i = 0; i < 7; ++i) {
+    walk[i].index = 100 + i;
+    walk[i].x = -3.0 + 0.3 * i;
+    walk[i].y = -0.5 + 0.1 * i;
+    walk[i].heading = 0.2 * i;
+  }
+  std::vector<int> delivered;
+  render_povray_frames((dir.path / "room.pov").string(), walk, options, dir.path.string(),
+                       [&](int index, PovrayFrame&& frame) {
+                         delivered.push_back(index);
+                         EXPECT_TRUE(frame.rgb.empty());
+                         ASSERT_EQ(frame.depth.size(), cv::Size(160, 80));
+                         expect_depth_matches(frame, walk[static_cast<std::size_t>(index)], 1.6);
+                       });
+  EXPECT_EQ(delivered, std::vector<int>({0, 1, 2, 3, 4, 5, 6}));
+  // Nothing of the passes is left behind.
+  for (const auto& entry : fs::directory_iterator(dir.path))
+    EXPECT_EQ(entry.path().filename(), "room.pov") << entry.path();
+}
+
 TEST(PovrayRender, SceneUnitsOtherThanMetres) {
   TempDir dir;
   write_room(dir.path / "room_cm.pov", 100.0);  // the same room drawn in centimetres

@@ -34,7 +34,7 @@ Lintel(14, 18.025, 14, 19.175, 0.15, 2.1)
 // floor and ceiling
 plane { y, 0 texture { pigment { granite color_map { [0 rgb <0.42, 0.42, 0.4>] [1 rgb <0.34, 0.34, 0.33>] } scale 0.5 }
   finish { specular 0.15 roughness 0.02 } } }
-plane { y, WallH texture { pigment { rgb 0.9 } finish { diffuse 0.8 } } }
+plane { y, WallH hollow texture { pigment { rgb 0.9 } finish { diffuse 0.8 } } }
 // skirting boards along every wall face
 #declare Skirt = texture { pigment { rgb 0.25 } }
 #macro SkirtX(X0, X1, Y) box { P(X0, Y - 0.012, 0), P(X1, Y + 0.012, 0.1) texture { Skirt } } #end

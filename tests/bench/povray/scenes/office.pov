@@ -59,7 +59,7 @@ DoorLeaf(15.0, 7.075, 1.0, 60)   // N3
 // floor and ceiling are cut out where the service wall stands, so that from inside it only black is seen
 plane { y, 0 texture { pigment { granite color_map { [0 rgb <0.35, 0.36, 0.42>] [1 rgb <0.25, 0.26, 0.3>] } scale 0.3 } } clipped_by { box { P(7.549, 0.129, -1), P(8.451, 4.921, 4) inverse } } }
 box { P(0, 5, -0.01), P(20, 7, 0.001) texture { pigment { checker rgb <0.7, 0.68, 0.6>, rgb <0.6, 0.58, 0.52> scale 0.5 } finish { specular 0.2 } } }
-plane { y, WallH texture { pigment { brick rgb 0.6, rgb 0.93 brick_size <0.6, 0.6, 0.6> mortar 0.015 } finish { diffuse 0.8 } } clipped_by { box { P(7.549, 0.129, -1), P(8.451, 4.921, 4) inverse } } }
+plane { y, WallH hollow texture { pigment { brick rgb 0.6, rgb 0.93 brick_size <0.6, 0.6, 0.6> mortar 0.015 } finish { diffuse 0.8 } } clipped_by { box { P(7.549, 0.129, -1), P(8.451, 4.921, 4) inverse } } }
 
 // ---- corridor furniture ----
 Picture(5.0, 6.925, -90, 0.8, 0.6, 1.5, pigment { agate scale 0.4 })
