@@ -62,22 +62,27 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
   out.reserve(path.size());
   if (envelopes) envelopes->frames.assign(path.size(), Envelope{});
   for (std::size_t i = 0; i < path.size(); ++i) {
-    cv::Mat depth = read_depth(path.frames[i].index);
-    if (depth.type() == CV_16U) depth.convertTo(depth, CV_32F, 0.001);  // millimetres -> metres, 0 stays 0
-    if (depth.cols > options.max_depth_width) {
-      // Nearest, not area: averaging a hit with a no-hit (0) would invent short ranges at silhouettes.
-      cv::Mat small;
-      cv::resize(
-          depth, small,
-          cv::Size(options.max_depth_width, std::max(1, depth.rows * options.max_depth_width / depth.cols)),
-          0, 0, cv::INTER_NEAREST);
-      depth = small;
-    }
-    out.push_back(depth_volume(depth));
-    if (envelopes) envelopes->frames[i] = envelope_from_depth(depth, path.frames[i]);
+    out.push_back(summarise_depth(read_depth(path.frames[i].index), path.frames[i], options,
+                                  envelopes ? &envelopes->frames[i] : nullptr));
     if (i % 16 == 0 || i + 1 == path.size()) progress.checkpoint(static_cast<double>(i + 1) / path.size());
   }
   return out;
+}
+
+DepthVolume summarise_depth(cv::Mat depth, const PathFrame& pose, const DepthSamplingOptions& options,
+                            Envelope* envelope) {
+  if (depth.type() == CV_16U) depth.convertTo(depth, CV_32F, 0.001);  // millimetres -> metres, 0 stays 0
+  if (depth.cols > options.max_depth_width) {
+    // Nearest, not area: averaging a hit with a no-hit (0) would invent short ranges at silhouettes.
+    cv::Mat small;
+    cv::resize(
+        depth, small,
+        cv::Size(options.max_depth_width, std::max(1, depth.rows * options.max_depth_width / depth.cols)), 0,
+        0, cv::INTER_NEAREST);
+    depth = small;
+  }
+  if (envelope) *envelope = envelope_from_depth(depth, pose);
+  return depth_volume(depth);
 }
 
 std::vector<SamplingCell> sampling_cells_from_depth(const CameraPath& path,

@@ -41,6 +41,11 @@ std::vector<DepthVolume> depth_volumes_along_path(const CameraPath& path,
                                                   Progress& progress = null_progress(),
                                                   PathEnvelopes* envelopes = nullptr);
 
+// One frame's part of depth_volumes_along_path: its volume, and its eye-level envelope when `envelope` is
+// given (the depth shrunk to max_depth_width first). For callers whose depth comes frame by frame.
+DepthVolume summarise_depth(cv::Mat depth, const PathFrame& pose, const DepthSamplingOptions& options,
+                            Envelope* envelope = nullptr);
+
 // Cells between significant changes: a change detected at frame k starts a new cell halfway between
 // frames k-1 and k. Size = mean star volume of the cell's frames with enough coverage (the neighbouring
 // cell's when none has). volumes: one per path frame.

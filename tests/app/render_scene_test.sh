@@ -72,6 +72,21 @@ assert abs(depth_mm(0, 16) - 1000 * behind) <= 2, (depth_mm(0, 16), behind)
 PY
 "$cli" capture-info "$tmp/out/frames" > "$tmp/info.txt" 2>&1 || fail "the frames are no capture: $(cat "$tmp/info.txt")"
 
+# Online sampling: the whole walk as coarse depth, full frames only for the keyframes; the capture is them.
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "-4,0 4,0 4,2" --step 0.25 --size 128x64 --online \
+  --ratio 8 --coarse-width 64 --out "$tmp/online" --quiet || fail "render-scene --online exit $?"
+python3 - "$tmp/online" <<'PY' || fail "online sampling output"
+import json, os, sys
+out = sys.argv[1]
+r = json.load(open(out + "/online_sampling.json"))
+assert r["path_frames"] == 41 and r["coarse_frames"] == 41 and r["coarse_width"] == 64, r
+assert 2 <= r["full_frames"] <= 41 // 4 and r["full_frames"] == len(r["keyframes"]), r
+g = json.load(open(out + "/groundtruth.json"))
+assert [f["index"] for f in g["frames"]] == r["keyframes"], (g["frames"], r["keyframes"])
+assert sorted(os.listdir(out + "/frames")) == ["%06d.jpg" % k for k in r["keyframes"]], os.listdir(out + "/frames")
+assert len(os.listdir(out + "/depth")) == r["full_frames"]
+PY
+
 # Errors: a missing scene, a broken one, no path, a size that is not 2:1, no povray.
 "$cli" render-scene --scene "$tmp/missing.pov" --waypoints "0,0 1,0" --out "$tmp/e1" 2> "$tmp/err" && fail "missing scene accepted"
 grep -q "missing.pov" "$tmp/err" || fail "missing scene error: $(cat "$tmp/err")"
