@@ -9,14 +9,11 @@
 // --online renders the whole path as coarse depth first and only the keyframes the depth sampler chooses
 // at full size (processing/sampling/online_sampling.h); the capture is then those keyframes, and
 // DIR/online_sampling.json says how many of the path's frames were rendered at each size.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app/cli/command.h"
@@ -25,7 +22,7 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "processing/capture/povray_render.h"
-#include "processing/sampling/online_sampling.h"
+#include "processing/sampling/cg_capture.h"
 
 namespace plenopath::cli {
 namespace {
@@ -43,151 +40,47 @@ struct Options {
   double ratio = 50.0;
 };
 
-// "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
-// along the path (the direction over the half metre around it, so corners turn smoothly).
-CameraPath walk_waypoints(const std::string& text, double step) {
-  std::vector<Eigen::Vector2d> points;
-  std::stringstream in(text);
-  std::string item;
-  while (in >> item) {
-    double x = 0, y = 0;
-    char comma = 0;
-    std::stringstream p(item);
-    if (!(p >> x >> comma >> y) || comma != ',' || !std::isfinite(x) || !std::isfinite(y))
-      throw Error("--waypoints: '" + item + "' is not X,Y (metres)");
-    if (points.empty() || (points.back() - Eigen::Vector2d(x, y)).norm() > 1e-9) points.emplace_back(x, y);
-  }
-  if (points.size() < 2) throw Error("--waypoints needs two distinct points or more");
-  if (!(step > 0)) throw Error("--step must be > 0");
-  std::vector<double> along = {0.0};
-  for (std::size_t k = 1; k < points.size(); ++k)
-    along.push_back(along.back() + (points[k] - points[k - 1]).norm());
-  auto at = [&](double s) {
-    s = std::clamp(s, 0.0, along.back());
-    std::size_t k = 1;
-    while (k + 1 < points.size() && along[k] < s) ++k;
-    const double w = (s - along[k - 1]) / std::max(1e-12, along[k] - along[k - 1]);
-    return Eigen::Vector2d((1 - w) * points[k - 1] + w * points[k]);
-  };
-  CameraPath path;
-  const int count = static_cast<int>(std::floor(along.back() / step + 1e-9)) + 1;
-  for (int i = 0; i < count; ++i) {
-    const double s = i * step;
-    const Eigen::Vector2d p = at(s), d = at(s + 0.25) - at(s - 0.25);
-    PathFrame f;
-    f.index = i;
-    f.x = p.x();
-    f.y = p.y();
-    f.heading = std::atan2(d.y(), d.x());
-    path.frames.push_back(f);
-  }
-  return path;
-}
-
 int run(const Options& o) {
-  PovrayOptions options;
+  CgCaptureOptions options;
+  PovrayOptions& povray = options.povray;
   int width = 0, height = 0;
   parse_size(o.size, &width, &height, "--size");
   if (height * 2 != width) throw Error("--size must be 2:1 (equirectangular), e.g. 2048x1024");
-  options.width = width;
-  options.executable = o.povray;
-  options.camera_height_m = o.camera_height;
-  options.units_per_metre = o.units_per_metre;
-  options.depth = !o.no_depth;
-  options.depth_fog_m = o.depth_fog;
-  options.quality = o.quality;
-  options.antialias = !o.no_antialias;
-  options.processes = o.processes;
-  options.frames_per_process = o.frames_per_process;
+  povray.width = width;
+  povray.executable = o.povray;
+  povray.camera_height_m = o.camera_height;
+  povray.units_per_metre = o.units_per_metre;
+  povray.depth = !o.no_depth;
+  povray.depth_fog_m = o.depth_fog;
+  povray.quality = o.quality;
+  povray.antialias = !o.no_antialias;
+  povray.processes = o.processes;
+  povray.frames_per_process = o.frames_per_process;
+  options.jpeg_quality = o.jpeg_quality;
+  options.online = o.online;
+  options.online_parameters.count = o.budget;
+  options.online_parameters.ratio = o.ratio;
+  options.coarse_width = o.coarse_width;
   options.check();
-  find_povray(options.executable);  // before any output is written
+  find_povray(povray.executable);  // before any output is written
   if (!fs::is_regular_file(o.scene)) throw Error("--scene " + o.scene + ": no such file");
   if (o.frames < 0) throw Error("--frames must be >= 0");
   if (o.path.empty() == o.waypoints.empty()) throw Error("give the path: --path PATH.json or --waypoints");
-
   CameraPath path = o.path.empty() ? walk_waypoints(o.waypoints, o.step) : read_path_file(o.path);
   if (o.frames > 0 && static_cast<int>(path.size()) > o.frames) path.frames.resize(o.frames);
   if (path.empty()) throw Error("the path has no frames");
-  path.scale_source = "ground_truth";
-  for (auto& f : path.frames) f.file = "frames/" + numbered_file_name(f.index, "jpg");
-
-  const fs::path out(o.out);
-  fs::create_directories(out / "frames");
-  if (options.depth) fs::create_directories(out / "depth");
-  const fs::path work = out / ".povray";
-  fs::create_directories(work);
-  write_path_file(path, (out / "groundtruth.json").string());
 
   ConsoleProgress progress("render-scene", o.quiet);
-  auto write_frame = [&](const PathFrame& pose, const PovrayFrame& frame) {
-    write_image((out / pose.file).string(), frame.rgb, o.jpeg_quality);
-    if (options.depth)
-      write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), frame.depth);
-  };
-  if (o.online) {
-    SamplingParameters parameters;
-    parameters.method = SamplingMethod::kDepth;
-    parameters.count = o.budget;
-    parameters.ratio = o.ratio;
-    OnlineSamplingOptions online;
-    online.coarse_width = o.coarse_width;
-    int written = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    double coarse_seconds = 0.0;
-    const OnlineSamplingResult result = sample_online(
-        path, parameters,
-        [&](const std::vector<PathFrame>& poses, int width,
-            const std::function<void(int, const cv::Mat&)>& deliver, Progress& p) {
-          PovrayOptions coarse = options;
-          coarse.width = width;
-          coarse.colour = false;
-          coarse.depth = true;
-          render_povray_frames(
-              o.scene, poses, coarse, work.string(), [&](int i, PovrayFrame&& f) { deliver(i, f.depth); }, p);
-          coarse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        },
-        [&](const std::vector<PathFrame>& poses, Progress& p) {
-          render_povray_frames(
-              o.scene, poses, options, work.string(),
-              [&](int i, PovrayFrame&& f) {
-                write_frame(poses[static_cast<std::size_t>(i)], f);
-                progress.frames(++written, static_cast<int>(poses.size()));
-              },
-              p);
-        },
-        online, progress);
-    progress.finish();
-    fs::remove_all(work);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // The capture is the keyframes: the path's other frames were never rendered at full size.
-    CameraPath kept = path;
-    kept.frames.clear();
-    for (int index : result.keyframes.indices) kept.frames.push_back(*path.find_frame(index));
-    write_path_file(kept, (out / "groundtruth.json").string());
-    const nlohmann::json report = {
-        {"path_frames", path.size()},       {"coarse_frames", result.coarse_frames},
-        {"coarse_width", o.coarse_width},   {"full_frames", result.full_frames},
-        {"full_size", {width, height}},     {"keyframes", result.keyframes.indices},
-        {"seconds_coarse", coarse_seconds}, {"seconds_total", seconds}};
-    std::ofstream((out / "online_sampling.json").string()) << report.dump(2) << "\n";
-    if (!o.quiet)
-      std::cerr << "render-scene: online sampling kept " << result.full_frames << " of " << path.size()
-                << " frames (" << path.length() << " m) of " << o.scene << ", rendered at full size into "
-                << o.out << "; the whole path as " << o.coarse_width << "-wide depth first\n";
-    return kExitOk;
-  }
-  render_povray_frames(
-      o.scene, path.frames, options, work.string(),
-      [&](int i, PovrayFrame&& frame) {
-        write_frame(path.frames[static_cast<std::size_t>(i)], frame);
-        progress.frames(i + 1, static_cast<int>(path.size()));
-      },
-      progress);
+  const CgCaptureResult result = render_cg_capture(o.scene, path, options, o.out, progress);
   progress.finish();
-  fs::remove_all(work);
-  if (!o.quiet)
+  if (!o.quiet && o.online)
+    std::cerr << "render-scene: online sampling kept " << result.full_frames << " of " << result.path_frames
+              << " frames (" << path.length() << " m) of " << o.scene << ", rendered at full size into "
+              << o.out << " after the whole path as " << o.coarse_width << "-wide depth ("
+              << result.seconds_coarse << " s of " << result.seconds_total << " s)\n";
+  else if (!o.quiet)
     std::cerr << "render-scene: " << path.size() << " frames (" << path.length() << " m) of " << o.scene
-              << " in " << o.out << "\n";
+              << " in " << o.out << " (" << result.seconds_total << " s)\n";
   return kExitOk;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "model/floor_plan.h"
+#include "processing/capture/frame_files.h"
 
 namespace plenopath::cli {
 
@@ -13,11 +14,6 @@ FloorPlan load_render_plan(const std::string& plan);
 void parse_size(const std::string& text, int* width, int* height, const std::string& option);
 // Comma-separated list, empty items dropped.
 std::vector<std::string> split_list(const std::string& text);
-// cv::imwrite that throws Error naming the file; JPEG quality applies to .jpg files.
-void write_image(const std::string& file, const cv::Mat& image, int jpeg_quality = 92);
-// "000042.jpg": the frame files `render` and `render-scene` write.
-std::string numbered_file_name(int index, const char* ext);
-// Depth in metres (CV_32F) to a 16-bit PNG in millimetres (0 = no hit).
-void write_depth_png(const std::string& file, const cv::Mat& depth_m);
+// write_image, numbered_file_name, write_depth_png: processing/capture/frame_files.h.
 
 }  // namespace plenopath::cli

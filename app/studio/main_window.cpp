@@ -318,6 +318,14 @@ void MainWindow::create_actions() {
   delete_hotspot->setStatusTip(tr("Delete in the panorama view does the same"));
 
   QMenu* process = menuBar()->addMenu(tr("&Process"));
+  QAction* render_cg = process->addAction(tr("Render &CG scene…"));
+  render_cg->setObjectName("render_cg_scene");
+  render_cg->setShortcut(tr("Ctrl+Shift+G"));
+  render_cg->setStatusTip(
+      tr("Render your POV-Ray scene along the path with the spherical camera, colour and depth, every frame "
+         "or online (keyframes only at full size); the frames become the capture"));
+  new RenderCgSceneReaction(render_cg, *this);
+  process->addSeparator();
   QAction* track = process->addAction(tr("&Track camera path"));
   track->setShortcut(tr("Ctrl+Shift+T"));
   new TrackPathReaction(track, *this);

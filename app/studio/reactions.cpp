@@ -23,6 +23,7 @@
 #include "model/path_io.h"
 #include "processing/export/tour_export.h"
 #include "widgets/capture_import_dialog.h"
+#include "widgets/cg_scene_dialog.h"
 #include "widgets/document_commands.h"
 #include "widgets/dxf_import_dialog.h"
 #include "widgets/map_view.h"
@@ -96,6 +97,26 @@ void ImportPathReaction::on_triggered() {
   }
   window_.document().undo_stack()->push(new widgets::ReplacePartsCommand(
       window_.document(), QObject::tr("Import path"), after, widgets::kPathChanged));
+}
+
+RenderCgSceneReaction::RenderCgSceneReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void RenderCgSceneReaction::update_enabled() { action()->setEnabled(!window_.tasks().is_running()); }
+
+void RenderCgSceneReaction::on_triggered() {
+  const Project& p = window_.document().project();
+  widgets::CgSceneDialog dialog(&window_, p.path.size() >= 2);
+  if (dialog.exec() != QDialog::Accepted) return;
+  if (!p.capture.empty() &&
+      QMessageBox::question(&window_, QObject::tr("Render CG scene"),
+                            QObject::tr("Replace the project's capture and path with the rendered frames and "
+                                        "their poses? (Undo brings the old ones back.)")) != QMessageBox::Yes)
+    return;
+  window_.tasks().start(QObject::tr("Render CG scene"), render_cg_scene_task(dialog.choices()));
 }
 
 ComputeVisibilityReaction::ComputeVisibilityReaction(QAction* action, MainWindow& window)

@@ -64,6 +64,17 @@ class ImportPathReaction : public Reaction {
   void on_triggered() override;
 };
 
+// Process > Render CG scene: the CG scene dialog, then the render as a task (progress per frame, Cancel
+// kills POV-Ray); the frames become the capture and their true poses the path, one undo step.
+class RenderCgSceneReaction : public Reaction {
+ public:
+  RenderCgSceneReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 class ComputeVisibilityReaction : public Reaction {
  public:
   ComputeVisibilityReaction(QAction* action, MainWindow& window);

@@ -5,12 +5,17 @@
 
 #include "app/studio/placement.h"
 #include "widgets/capture_import_dialog.h"
+#include "widgets/cg_scene_dialog.h"
 #include "widgets/task_runner.h"
 
 namespace plenopath::studio {
 
 // Scans the folder or video and sets the project's capture (keeps GPS data already there).
 widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& choices);
+// Process > Render CG scene: the author's POV-Ray scene rendered along the project's path or the typed
+// waypoints (processing/sampling/cg_capture.h), every frame or online; the frames written become the
+// project's capture and their true poses its path (scale from the ground truth).
+widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choices);
 // The camera path from the capture's frames alone (processing/egomotion): progress and cancel reach Ceres
 // through the tracker's callback. Scale from the capture's camera height when known. The tracker's points
 // are kept with the path (Project::path_points); when the project has a plan the path is then placed on it

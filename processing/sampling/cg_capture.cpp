@@ -1,0 +1,170 @@
+#include "processing/sampling/cg_capture.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "model/error.h"
+#include "model/option_check.h"
+#include "model/path_io.h"
+#include "processing/capture/frame_files.h"
+#include "processing/sampling/online_sampling.h"
+
+namespace plenopath {
+
+namespace fs = std::filesystem;
+
+// "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
+// along the path (the direction over the half metre around it, so corners turn smoothly).
+CameraPath walk_waypoints(const std::string& text, double step) {
+  std::vector<Eigen::Vector2d> points;
+  std::stringstream in(text);
+  std::string item;
+  while (in >> item) {
+    double x = 0, y = 0;
+    char comma = 0;
+    std::stringstream p(item);
+    if (!(p >> x >> comma >> y) || comma != ',' || !std::isfinite(x) || !std::isfinite(y))
+      throw Error("--waypoints: '" + item + "' is not X,Y (metres)");
+    if (points.empty() || (points.back() - Eigen::Vector2d(x, y)).norm() > 1e-9) points.emplace_back(x, y);
+  }
+  if (points.size() < 2) throw Error("--waypoints needs two distinct points or more");
+  if (!(step > 0)) throw Error("--step must be > 0");
+  std::vector<double> along = {0.0};
+  for (std::size_t k = 1; k < points.size(); ++k)
+    along.push_back(along.back() + (points[k] - points[k - 1]).norm());
+  auto at = [&](double s) {
+    s = std::clamp(s, 0.0, along.back());
+    std::size_t k = 1;
+    while (k + 1 < points.size() && along[k] < s) ++k;
+    const double w = (s - along[k - 1]) / std::max(1e-12, along[k] - along[k - 1]);
+    return Eigen::Vector2d((1 - w) * points[k - 1] + w * points[k]);
+  };
+  CameraPath path;
+  const int count = static_cast<int>(std::floor(along.back() / step + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) {
+    const double s = i * step;
+    const Eigen::Vector2d p = at(s), d = at(s + 0.25) - at(s - 0.25);
+    PathFrame f;
+    f.index = i;
+    f.x = p.x();
+    f.y = p.y();
+    f.heading = std::atan2(d.y(), d.x());
+    path.frames.push_back(f);
+  }
+  return path;
+}
+
+void CgCaptureOptions::check() const {
+  povray.check();
+  require_option(jpeg_quality >= 1 && jpeg_quality <= 100, "CgCaptureOptions.jpeg_quality",
+                 "must be in [1, 100]", jpeg_quality);
+  require_option(coarse_width >= 16 && coarse_width % 2 == 0, "CgCaptureOptions.coarse_width",
+                 "must be even and >= 16", coarse_width);
+}
+
+CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPath& path_in,
+                                  const CgCaptureOptions& options, const std::string& out_dir,
+                                  Progress& progress) {
+  options.check();
+  find_povray(options.povray.executable);  // before any output is written
+  if (!fs::is_regular_file(scene_file)) throw Error("POV-Ray scene " + scene_file + ": no such file");
+  if (path_in.empty()) throw Error("the path has no frames");
+  CameraPath path = path_in;
+  path.scale_source = "ground_truth";
+  for (PathFrame& f : path.frames) f.file = "frames/" + numbered_file_name(f.index, "jpg");
+  const fs::path out(out_dir);
+  fs::create_directories(out / "frames");
+  if (options.povray.depth) fs::create_directories(out / "depth");
+  const fs::path work = out / ".povray";
+  fs::create_directories(work);
+  // Whatever happens, the work folder goes.
+  struct RemoveWork {
+    fs::path dir;
+    ~RemoveWork() {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  } remove_work{work};
+  const auto t0 = std::chrono::steady_clock::now();
+  auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  auto write_frame = [&](const PathFrame& pose, const PovrayFrame& frame) {
+    write_image((out / pose.file).string(), frame.rgb, options.jpeg_quality);
+    if (options.povray.depth)
+      write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), frame.depth);
+  };
+  CgCaptureResult result;
+  result.path_frames = static_cast<int>(path.size());
+  if (!options.online) {
+    write_path_file(path, (out / "groundtruth.json").string());
+    int written = 0;
+    render_povray_frames(
+        scene_file, path.frames, options.povray, work.string(),
+        [&](int i, PovrayFrame&& frame) {
+          write_frame(path.frames[static_cast<std::size_t>(i)], frame);
+          ++written;
+          progress.report(double(written) / path.size(),
+                          "frame " + std::to_string(written) + " of " + std::to_string(path.size()));
+        },
+        progress);
+    result.path = path;
+    result.full_frames = result.path_frames;
+    result.seconds_total = since();
+    return result;
+  }
+  SamplingParameters parameters = options.online_parameters;
+  parameters.method = SamplingMethod::kDepth;
+  OnlineSamplingOptions online;
+  online.coarse_width = options.coarse_width;
+  const OnlineSamplingResult sampled = sample_online(
+      path, parameters,
+      [&](const std::vector<PathFrame>& poses, int width,
+          const std::function<void(int, const cv::Mat&)>& deliver, Progress& p) {
+        PovrayOptions coarse = options.povray;
+        coarse.width = width;
+        coarse.colour = false;
+        coarse.depth = true;
+        render_povray_frames(
+            scene_file, poses, coarse, work.string(), [&](int i, PovrayFrame&& f) { deliver(i, f.depth); },
+            p);
+        result.seconds_coarse = since();
+      },
+      [&](const std::vector<PathFrame>& poses, Progress& p) {
+        int written = 0;
+        render_povray_frames(
+            scene_file, poses, options.povray, work.string(),
+            [&](int i, PovrayFrame&& f) {
+              write_frame(poses[static_cast<std::size_t>(i)], f);
+              ++written;
+              p.report(double(written) / poses.size(),
+                       "keyframe " + std::to_string(written) + " of " + std::to_string(poses.size()));
+            },
+            p);
+      },
+      online, progress);
+  // The capture is the keyframes: the path's other frames were never rendered at full size.
+  result.path = path;
+  result.path.frames.clear();
+  for (int index : sampled.keyframes.indices) result.path.frames.push_back(*path.find_frame(index));
+  write_path_file(result.path, (out / "groundtruth.json").string());
+  result.full_frames = sampled.full_frames;
+  result.coarse_frames = sampled.coarse_frames;
+  result.seconds_total = since();
+  const nlohmann::json report = {{"path_frames", result.path_frames},
+                                 {"coarse_frames", result.coarse_frames},
+                                 {"coarse_width", options.coarse_width},
+                                 {"full_frames", result.full_frames},
+                                 {"full_size", {options.povray.width, options.povray.width / 2}},
+                                 {"keyframes", sampled.keyframes.indices},
+                                 {"seconds_coarse", result.seconds_coarse},
+                                 {"seconds_total", result.seconds_total}};
+  const fs::path report_file = out / "online_sampling.json";
+  std::ofstream(report_file) << report.dump(2) << "\n";
+  return result;
+}
+
+}  // namespace plenopath

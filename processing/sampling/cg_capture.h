@@ -1,0 +1,42 @@
+#pragma once
+// A CG capture (issue 23): the author's POV-Ray scene rendered along a path into a capture folder laid out
+// as `plenopath render` writes one (DIR/groundtruth.json with `file` fields, DIR/frames/NNNNNN.jpg,
+// DIR/depth/NNNNNN.png in 16-bit millimetres), so tracking, sampling and the studio take it like any other.
+// Every frame, or online (online_sampling.h): the whole path as coarse depth, full frames only for the
+// keyframes, which are then the capture (DIR/online_sampling.json says what was rendered at each size).
+// The command line's render-scene and the studio's Process > Render CG scene both call it.
+#include <string>
+
+#include "model/camera_path.h"
+#include "model/keyframes.h"
+#include "processing/capture/povray_render.h"
+#include "processing/util/progress.h"
+
+namespace plenopath {
+
+struct CgCaptureOptions {
+  PovrayOptions povray;  // size, camera height, units, depth, quality, processes
+  int jpeg_quality = 92;
+  bool online = false;
+  SamplingParameters online_parameters;  // online: the depth sampler's budget (count, or ratio)
+  int coarse_width = 256;                // online: width of the coarse depth pass
+  void check() const;                    // throws Error naming the bad field
+};
+
+struct CgCaptureResult {
+  CameraPath path;  // the frames written (all, or the online keyframes); scale_source "ground_truth"
+  int path_frames = 0, full_frames = 0, coarse_frames = 0;
+  double seconds_coarse = 0.0, seconds_total = 0.0;
+};
+
+// "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
+// along the path (the direction over the half metre around it, so corners turn smoothly). Throws Error.
+CameraPath walk_waypoints(const std::string& text, double step);
+
+// Throws Error (POV-Ray's own messages included) or Cancelled; `out_dir` is created, and a cancelled or
+// failed run leaves what it wrote so far (without its work folder).
+CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPath& path,
+                                  const CgCaptureOptions& options, const std::string& out_dir,
+                                  Progress& progress = null_progress());
+
+}  // namespace plenopath

@@ -1,0 +1,121 @@
+// Process > Render CG scene: the author's POV-Ray scene rendered along waypoints becomes the project's
+// capture and its true poses the path, as one undo step; online, only the keyframes are rendered and the
+// path is theirs, numbered as the capture's frames. The dialog's choices map to the render's options.
+#include <gtest/gtest.h>
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QLineEdit>
+#include <QRadioButton>
+#include <QSpinBox>
+#include <QUndoStack>
+#include <filesystem>
+#include <fstream>
+
+#include "app/studio/studio_tasks.h"
+#include "tests/widgets/test_studio.h"
+#include "widgets/cg_scene_dialog.h"
+#include "widgets/project_document.h"
+#include "widgets/task_runner.h"
+
+namespace plenopath {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SceneDir {
+  fs::path path = fs::temp_directory_path() / ("plenopath_cg_scene_" + std::to_string(::getpid()));
+  SceneDir() {
+    fs::create_directories(path);
+    std::ofstream(path / "room.pov")
+        << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\nlight_source { <2, 2.8, 1> color rgb 1 }\n"
+           "box { <-5, 0, -3>, <5, 3, 3> inverse pigment { checker rgb <0.8, 0.7, 0.6> rgb <0.2, 0.3, 0.4> "
+           "scale 0.5 } }\nsphere { <2, 1, 1.5>, 0.5 pigment { rgb 1 } }\n";
+  }
+  ~SceneDir() { fs::remove_all(path); }
+};
+
+widgets::CgSceneChoices room_choices(const SceneDir& dir, const std::string& out, bool online) {
+  widgets::CgSceneChoices c;
+  c.scene = (dir.path / "room.pov").string();
+  c.out_dir = (dir.path / out).string();
+  c.use_project_path = false;
+  c.waypoints = "-4,0 4,0 4,2";
+  c.step_m = 0.25;
+  c.options.povray.width = 64;
+  c.options.povray.quality = 2;
+  c.options.online = online;
+  c.options.online_parameters.ratio = 8;
+  c.options.coarse_width = 64;
+  return c;
+}
+
+TEST(CgScene, RenderedFramesBecomeTheCaptureAndTheirPosesThePath) {
+  SceneDir dir;
+  test::TestStudio s;
+  ASSERT_TRUE(s.window.tasks().start("Render CG scene",
+                                     studio::render_cg_scene_task(room_choices(dir, "all", false))));
+  s.window.tasks().wait();
+  ASSERT_TRUE(s.errors.isEmpty()) << s.errors.join("\n").toStdString();
+  const Project& p = s.window.document().project();
+  ASSERT_EQ(p.path.size(), 41u);  // 8 m and 2 m at 0.25 m, both ends
+  EXPECT_EQ(p.capture.frame_names.size(), 41u);
+  EXPECT_EQ(p.path.scale_source, "ground_truth");
+  EXPECT_DOUBLE_EQ(p.capture.camera_height_m, 1.6);
+  EXPECT_NEAR(p.path.frames[0].x, -4.0, 1e-9);
+  EXPECT_NEAR(p.path.frames.back().y, 2.0, 1e-9);
+  for (std::size_t k = 0; k < p.path.size(); ++k) {
+    EXPECT_EQ(p.path.frames[k].index, static_cast<int>(k));
+    EXPECT_EQ(p.path.frames[k].file, p.capture.frame_names[k]);
+  }
+  EXPECT_TRUE(fs::exists(dir.path / "all" / "depth" / "000040.png"));
+  EXPECT_EQ(s.window.document().undo_stack()->count(), 1);
+  s.window.document().undo_stack()->undo();
+  EXPECT_TRUE(s.window.document().project().path.empty());
+  EXPECT_TRUE(s.window.document().project().capture.empty());
+}
+
+TEST(CgScene, OnlineRendersOnlyTheKeyframes) {
+  SceneDir dir;
+  test::TestStudio s;
+  ASSERT_TRUE(s.window.tasks().start("Render CG scene",
+                                     studio::render_cg_scene_task(room_choices(dir, "online", true))));
+  s.window.tasks().wait();
+  ASSERT_TRUE(s.errors.isEmpty()) << s.errors.join("\n").toStdString();
+  const Project& p = s.window.document().project();
+  ASSERT_GE(p.path.size(), 2u);
+  EXPECT_LE(p.path.size(), 41u / 4);
+  EXPECT_EQ(p.capture.frame_names.size(), p.path.size());
+  for (std::size_t k = 0; k < p.path.size(); ++k) EXPECT_EQ(p.path.frames[k].index, static_cast<int>(k));
+  EXPECT_TRUE(fs::exists(dir.path / "online" / "online_sampling.json"));
+}
+
+TEST(CgScene, AMissingPovrayIsAMessage) {
+  SceneDir dir;
+  test::TestStudio s;
+  widgets::CgSceneChoices c = room_choices(dir, "none", false);
+  c.options.povray.executable = "no-such-povray";
+  ASSERT_TRUE(s.window.tasks().start("Render CG scene", studio::render_cg_scene_task(c)));
+  s.window.tasks().wait();
+  ASSERT_EQ(s.errors.size(), 1);
+  EXPECT_TRUE(s.errors[0].contains("apt-get install povray")) << s.errors[0].toStdString();
+  EXPECT_TRUE(s.window.document().project().capture.empty());
+}
+
+TEST(CgScene, DialogChoicesMapToTheRender) {
+  widgets::CgSceneDialog dialog(nullptr, false, "/tmp/scene.pov");
+  auto* project_path = dialog.findChildren<QRadioButton*>()[0];
+  EXPECT_FALSE(project_path->isEnabled());  // no path in the project: waypoints only
+  for (QCheckBox* box : dialog.findChildren<QCheckBox*>())
+    if (box->text().startsWith("Online")) box->setChecked(true);
+  const widgets::CgSceneChoices c = dialog.choices();
+  EXPECT_FALSE(c.use_project_path);
+  EXPECT_EQ(c.scene, "/tmp/scene.pov");
+  EXPECT_EQ(c.out_dir, "/tmp/scene-capture");
+  EXPECT_TRUE(c.options.online);
+  EXPECT_EQ(c.options.povray.width, 2048);
+  EXPECT_DOUBLE_EQ(c.options.online_parameters.ratio, 50.0);
+}
+
+}  // namespace
+}  // namespace plenopath

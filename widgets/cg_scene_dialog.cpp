@@ -1,0 +1,144 @@
+#include "widgets/cg_scene_dialog.h"
+
+#include <QCheckBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QSpinBox>
+#include <QVBoxLayout>
+
+namespace plenopath::widgets {
+
+CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scene)
+    : QDialog(parent),
+      scene_(new QLineEdit(scene, this)),
+      out_(new QLineEdit(this)),
+      project_path_(new QRadioButton(tr("The project's path"), this)),
+      waypoints_choice_(new QRadioButton(tr("Waypoints"), this)),
+      waypoints_(new QLineEdit(this)),
+      step_(new QDoubleSpinBox(this)),
+      width_(new QSpinBox(this)),
+      height_(new QDoubleSpinBox(this)),
+      units_(new QDoubleSpinBox(this)),
+      depth_(new QCheckBox(tr("Depth (two more passes)"), this)),
+      online_(
+          new QCheckBox(tr("Online: coarse depth of the whole path, full frames only for keyframes"), this)),
+      ratio_(new QDoubleSpinBox(this)) {
+  setWindowTitle(tr("Render CG scene"));
+  setObjectName("cg_scene_dialog");
+  auto* scene_button = new QPushButton(tr("Scene…"), this);
+  auto* out_button = new QPushButton(tr("Folder…"), this);
+  auto* scene_row = new QHBoxLayout;
+  scene_row->addWidget(scene_, 1);
+  scene_row->addWidget(scene_button);
+  auto* out_row = new QHBoxLayout;
+  out_row->addWidget(out_, 1);
+  out_row->addWidget(out_button);
+  scene_->setPlaceholderText(tr("POV-Ray scene (.pov); its own camera is replaced"));
+  out_->setPlaceholderText(tr("folder for the frames, depth and ground truth"));
+  if (!scene.isEmpty())
+    out_->setText(QFileInfo(scene).absolutePath() + "/" + QFileInfo(scene).baseName() + "-capture");
+  project_path_->setEnabled(has_path);
+  (has_path ? project_path_ : waypoints_choice_)->setChecked(true);
+  waypoints_->setPlaceholderText(tr("X,Y X,Y … in metres on the plan"));
+  step_->setRange(0.01, 10.0);
+  step_->setValue(0.1);
+  step_->setDecimals(2);
+  step_->setSuffix(tr(" m"));
+  width_->setRange(64, 8192);
+  width_->setSingleStep(256);
+  width_->setValue(2048);
+  width_->setSuffix(tr(" px wide (2:1)"));
+  height_->setRange(0.1, 10.0);
+  height_->setDecimals(2);
+  height_->setValue(1.6);
+  height_->setSuffix(tr(" m"));
+  units_->setRange(0.001, 100000.0);
+  units_->setDecimals(3);
+  units_->setValue(1.0);
+  units_->setToolTip(tr("Scene units in a metre (100: a scene drawn in centimetres)"));
+  depth_->setChecked(true);
+  ratio_->setRange(1.0, 10000.0);
+  ratio_->setValue(50.0);
+  ratio_->setToolTip(tr("Frames of the path per keyframe"));
+  ratio_->setEnabled(false);
+  auto* path_row = new QHBoxLayout;
+  path_row->addWidget(project_path_);
+  path_row->addWidget(waypoints_choice_);
+  path_row->addWidget(waypoints_, 1);
+  auto* form = new QFormLayout;
+  form->addRow(tr("Scene"), scene_row);
+  form->addRow(tr("Along"), path_row);
+  form->addRow(tr("Waypoint step"), step_);
+  form->addRow(tr("Panorama size"), width_);
+  form->addRow(tr("Camera height"), height_);
+  form->addRow(tr("Scene units per metre"), units_);
+  form->addRow(QString(), depth_);
+  form->addRow(QString(), online_);
+  form->addRow(tr("Frames per keyframe"), ratio_);
+  form->addRow(tr("Capture folder"), out_row);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addWidget(buttons);
+  auto update = [this] {
+    waypoints_->setEnabled(waypoints_choice_->isChecked());
+    step_->setEnabled(waypoints_choice_->isChecked());
+    ratio_->setEnabled(online_->isChecked());
+  };
+  update();
+  connect(waypoints_choice_, &QRadioButton::toggled, this, update);
+  connect(online_, &QCheckBox::toggled, this, update);
+  connect(scene_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, tr("POV-Ray scene"), scene_->text(),
+                                                   tr("POV-Ray scenes (*.pov);;All files (*)"));
+    if (f.isEmpty()) return;
+    scene_->setText(f);
+    if (out_->text().isEmpty())
+      out_->setText(QFileInfo(f).absolutePath() + "/" + QFileInfo(f).baseName() + "-capture");
+  });
+  connect(out_button, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getExistingDirectory(this, tr("Capture folder"), out_->text());
+    if (!f.isEmpty()) out_->setText(f);
+  });
+  connect(buttons, &QDialogButtonBox::accepted, this, [this] {
+    QString problem;
+    if (!QFileInfo(scene_->text()).isFile())
+      problem = tr("Choose the POV-Ray scene to render (%1 is no file).").arg(scene_->text());
+    else if (out_->text().trimmed().isEmpty())
+      problem = tr("Choose the folder to write the capture into.");
+    else if (waypoints_choice_->isChecked() && waypoints_->text().trimmed().isEmpty())
+      problem = tr("Type the waypoints (X,Y X,Y … in metres), or render along the project's path.");
+    if (!problem.isEmpty()) {
+      QMessageBox::warning(this, tr("Render CG scene"), problem);
+      return;
+    }
+    accept();
+  });
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+}
+
+CgSceneChoices CgSceneDialog::choices() const {
+  CgSceneChoices c;
+  c.scene = scene_->text().toStdString();
+  c.out_dir = out_->text().trimmed().toStdString();
+  c.use_project_path = project_path_->isChecked();
+  c.waypoints = waypoints_->text().toStdString();
+  c.step_m = step_->value();
+  c.options.povray.width = width_->value() / 2 * 2;
+  c.options.povray.camera_height_m = height_->value();
+  c.options.povray.units_per_metre = units_->value();
+  c.options.povray.depth = depth_->isChecked();
+  c.options.online = online_->isChecked();
+  c.options.online_parameters.ratio = ratio_->value();
+  return c;
+}
+
+}  // namespace plenopath::widgets
