@@ -27,6 +27,7 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
       width_(new QSpinBox(this)),
       height_(new QDoubleSpinBox(this)),
       units_(new QDoubleSpinBox(this)),
+      z_up_(new QCheckBox(tr("Modelled with z up (sky z, as CAD exports are)"), this)),
       depth_(new QCheckBox(tr("Depth (two more passes)"), this)),
       online_(
           new QCheckBox(tr("Online: coarse depth of the whole path, full frames only for keyframes"), this)),
@@ -80,6 +81,7 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   form->addRow(tr("Panorama size"), width_);
   form->addRow(tr("Camera height"), height_);
   form->addRow(tr("Scene units per metre"), units_);
+  form->addRow(QString(), z_up_);
   form->addRow(QString(), depth_);
   form->addRow(QString(), online_);
   form->addRow(tr("Frames per keyframe"), ratio_);
@@ -135,6 +137,7 @@ CgSceneChoices CgSceneDialog::choices() const {
   c.options.povray.width = width_->value() / 2 * 2;
   c.options.povray.camera_height_m = height_->value();
   c.options.povray.units_per_metre = units_->value();
+  c.options.povray.z_up = z_up_->isChecked();
   c.options.povray.depth = depth_->isChecked();
   c.options.online = online_->isChecked();
   c.options.online_parameters.ratio = ratio_->value();

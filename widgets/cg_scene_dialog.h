@@ -41,6 +41,7 @@ class CgSceneDialog : public QDialog {
   QSpinBox* width_;
   QDoubleSpinBox* height_;
   QDoubleSpinBox* units_;
+  QCheckBox* z_up_;
   QCheckBox* depth_;
   QCheckBox* online_;
   QDoubleSpinBox* ratio_;

@@ -33,7 +33,7 @@ struct Options {
   std::string scene, path, waypoints, out, size = "2048x1024", povray = "povray";
   double step = 0.1, camera_height = 1.6, units_per_metre = 1.0, depth_fog = 0.0;
   int frames = 0, quality = 9, jpeg_quality = 92, processes = 0, frames_per_process = 16;
-  bool no_depth = false, no_antialias = false, quiet = false;
+  bool no_depth = false, no_antialias = false, quiet = false, z_up = false;
   // Online sampling: coarse depth of the whole path, full frames only for the keyframes it gives.
   bool online = false;
   int budget = 0, coarse_width = 256;
@@ -50,6 +50,7 @@ int run(const Options& o) {
   povray.executable = o.povray;
   povray.camera_height_m = o.camera_height;
   povray.units_per_metre = o.units_per_metre;
+  povray.z_up = o.z_up;
   povray.depth = !o.no_depth;
   povray.depth_fog_m = o.depth_fog;
   povray.quality = o.quality;
@@ -104,6 +105,7 @@ Command add_render_scene_command(CLI::App& parent) {
   sub->add_option("--units-per-metre", o->units_per_metre, "Scene units in a metre (100: a scene in cm)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  sub->add_flag("--z-up", o->z_up, "The scene is modelled with z up (sky z), as CAD exports are");
   sub->add_flag("--no-depth", o->no_depth, "Colour only (no depth passes: a third of the time)");
   sub->add_option("--depth-fog", o->depth_fog, "Fog distance of the depth passes, metres (0 = 8 m)")
       ->capture_default_str();

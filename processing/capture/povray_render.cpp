@@ -132,15 +132,26 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& 
     const PathFrame& pose = poses[static_cast<std::size_t>(i)];
     const double c = std::cos(pose.heading), s = std::sin(pose.heading);
     const std::string comma = i + 1 < count ? ", " : "}\n";
-    location += pov_vector(pose.x * u, o.camera_height_m * u, pose.y * u) + comma;
-    direction += pov_vector(c, 0, s) + comma;
-    right += pov_vector(s, 0, -c) + comma;
+    // Plan (X, Y, up) is POV <X, up, Y> (y up), or <X, Y, up> for a scene modelled z up (a right-handed
+    // world). For the latter the vectors are the y-up ones with y and z swapped and right and up turned
+    // over: POV-Ray's spherical camera takes its basis as left-handed (PovrayRender.ScenesModelledWithZUp
+    // checks the result against the room's geometry).
+    if (o.z_up) {
+      location += pov_vector(pose.x * u, pose.y * u, o.camera_height_m * u) + comma;
+      direction += pov_vector(c, s, 0) + comma;
+      right += pov_vector(-s, c, 0) + comma;
+    } else {
+      location += pov_vector(pose.x * u, o.camera_height_m * u, pose.y * u) + comma;
+      direction += pov_vector(c, 0, s) + comma;
+      right += pov_vector(s, 0, -c) + comma;
+    }
   }
   const std::string index = count > 1 ? "frame_number" : "0";
   const std::string camera = location + direction + right +
                              "camera {\n  spherical\n  angle 360 180\n  location Plenopath_Location[" +
                              index + "]\n  direction Plenopath_Direction[" + index +
-                             "]\n  right Plenopath_Right[" + index + "]\n  up <0, 1, 0>\n}\n";
+                             "]\n  right Plenopath_Right[" + index + "]\n  up " +
+                             (o.z_up ? "<0, 0, -1>" : "<0, 1, 0>") + "\n}\n";
   auto pass = [&](const std::string& name, const std::string& extra_sdl,
                   const std::vector<std::string>& flags) {
     const fs::path wrapper = work / (name + ".pov");

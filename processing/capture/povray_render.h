@@ -28,7 +28,10 @@ struct PovrayOptions {
   int width = 2048;                   // panorama width; the height is half
   double camera_height_m = 1.6;       // camera centre above the plan's floor (POV y = 0)
   double units_per_metre = 1.0;       // scene units in a metre (POV scenes have no unit)
-  bool colour = true;                 // false: depth only (a coarse pass for online sampling)
+  // The scene is modelled with z up (`sky z`, as CAD exports and many examples are): plan (X, Y) is POV
+  // (x, y) and the camera height POV z. Otherwise y up: plan (X, Y) is POV (x, z).
+  bool z_up = false;
+  bool colour = true;  // false: depth only (a coarse pass for online sampling)
   bool depth = true;
   // Fog distance of the depth passes (metres): depth resolution is about D / 65535 / exp(-d / D) at
   // distance d (8 m: 0.12 mm at 0, 0.9 mm at 16 m, 6 mm at 32 m). 0 = 8 m.

@@ -26,15 +26,20 @@ struct TempDir {
 // white sphere at plan (2, 1.5), 1 m up, radius 0.5; one light; the author's own perspective camera, which
 // the studio's must replace. `scale`: scene units per metre. `solid`: the room is a plain box, so the camera
 // is inside a solid object (not hollow: POV-Ray puts no fog there, and so no depth).
-void write_room(const fs::path& file, double scale, bool solid = false) {
+// `z_up`: the same room modelled with z up (POV <x, y, z> = plan X, Y and height), as CAD exports write.
+void write_room(const fs::path& file, double scale, bool solid = false, bool z_up = false) {
+  auto v = [z_up](double x, double up, double y) {
+    return "<" + std::to_string(x) + ", " + std::to_string(z_up ? y : up) + ", " +
+           std::to_string(z_up ? up : y) + ">";
+  };
   std::ofstream out(file);
   out << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n#declare S = " << scale << ";\n"
       << "camera { perspective location <1, 1, 1> * S look_at <0, 0, 0> }\n"
-      << "light_source { <2, 2.8, 1> * S color rgb 1 }\n"
-      << "box { <-5, 0, -3> * S, <5, 3, 3> * S" << (solid ? "" : " inverse") << "\n"
+      << "light_source { " << v(2, 2.8, 1) << " * S color rgb 1 }\n"
+      << "box { " << v(-5, 0, -3) << " * S, " << v(5, 3, 3) << " * S" << (solid ? "" : " inverse") << "\n"
       << "  pigment { checker rgb <0.8, 0.7, 0.6> rgb <0.2, 0.3, 0.4> scale 0.5 * S } finish { diffuse 0.8 } "
          "}\n"
-      << "sphere { <2, 1, 1.5> * S, 0.5 * S pigment { rgb 1 } finish { reflection 0.5 } }\n";
+      << "sphere { " << v(2, 1, 1.5) << " * S, 0.5 * S pigment { rgb 1 } finish { reflection 0.5 } }\n";
 }
 
 // Distance from the camera centre along the ray of pixel (u, v) to the room or the sphere (plan metres).
@@ -150,6 +155,23 @@ TEST(PovrayRender, AWalkInChunksDeliversEachFrameAtItsOwnPose) {
   // Nothing of the passes is left behind.
   for (const auto& entry : fs::directory_iterator(dir.path))
     EXPECT_EQ(entry.path().filename(), "room.pov") << entry.path();
+}
+
+// A scene modelled with z up renders the same room at the same pose: depth against the same geometry.
+TEST(PovrayRender, ScenesModelledWithZUp) {
+  TempDir dir;
+  write_room(dir.path / "room_z.pov", 1.0, false, true);
+  PovrayOptions options;
+  options.width = 160;
+  options.colour = false;
+  options.z_up = true;
+  PathFrame pose;
+  pose.x = 1.1;
+  pose.y = -0.7;
+  pose.heading = -2.2;
+  const PovrayFrame frame =
+      render_povray_frame((dir.path / "room_z.pov").string(), pose, options, dir.path.string());
+  expect_depth_matches(frame, pose, options.camera_height_m);
 }
 
 TEST(PovrayRender, SceneUnitsOtherThanMetres) {
