@@ -2,7 +2,8 @@
 // Step 3: global refinement of planar poses (x, y, heading) and 3-D points with Ceres (bundle adjustment on
 // bearings). Angular residuals (bearing_cost.h), a robust loss, the gauge fixed (first pose held, the scale
 // held by a soft prior), sparse Schur. Long captures are refined in overlapping windows of keyframes first
-// (each window's leading poses held from the previous window), then in one global pass.
+// (each window's leading poses held from the previous window), then in one global pass: a bundle, or for
+// captures too long for one (tens of thousands of frames), a pose graph on the keyframes.
 #include <Eigen/Core>
 #include <functional>
 #include <string>
@@ -31,6 +32,17 @@ struct BundleProblem {
   // (pitch, roll) per pose, radians, when the refinement estimates them (RefinementOptions::tilt_prior_deg);
   // empty = level cameras (the planar model).
   std::vector<Eigen::Vector2d> tilts;
+  // The values (not the observations), to try a step and take it back.
+  struct State {
+    std::vector<Eigen::Vector3d> poses, points;
+    std::vector<Eigen::Vector2d> tilts;
+  };
+  State state() const { return {poses, points, tilts}; }
+  void restore(const State& s) {
+    poses = s.poses;
+    points = s.points;
+    tilts = s.tilts;
+  }
 };
 
 struct RefinementOptions {
@@ -42,6 +54,8 @@ struct RefinementOptions {
   // Memory: Ceres keeps about a kilobyte per observation. Above this many, the global pass sees each point
   // through a few of its observations (first, last, evenly between), and windows with both ends held then
   // refine every pose against all observations (0 = always all). 10 000 frames make about 2.3 million.
+  // When even three observations a point are more than this, a pose graph on the keyframes (pose_graph.h,
+  // the revisited places measured by local bundles) comes first, then the bundle over some of the points.
   int global_max_observations = 600000;
   // After the global pass, observations farther off than this (radians) are dropped and the global pass is
   // repeated (0 = keep all).
@@ -70,6 +84,7 @@ struct RefinementReport {
   int windows = 0;
   int iterations = 0;        // summed over all solves
   int outliers_removed = 0;  // observations dropped as outliers
+  int revisits = 0;          // revisited places the pose-graph pass tied together (0: no pose graph)
 };
 
 // Reports per Ceres iteration; a cancel stops the solver and ends with Cancelled (`problem` is then partly
@@ -77,7 +92,8 @@ struct RefinementReport {
 RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& options,
                                Progress& progress = null_progress());
 
-// Angular residual (radians) of each observation under the problem's current values.
+// Angular residual (radians) of one observation, and of each, under the problem's current values.
+double observation_error(const BundleProblem& problem, const BundleObservation& observation);
 std::vector<double> observation_errors(const BundleProblem& problem);
 
 }  // namespace plenopath

@@ -323,6 +323,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     std::vector<double> steps;
     for (int k = 1; k < kfn; ++k) steps.push_back(kf_travelled[k] - kf_travelled[k - 1]);
     const std::vector<Eigen::Vector3d> kf_now = problem.poses;
+    progress.checkpoint(0.475, "loop closure");
     std::vector<LoopMatch> loops = find_loop_closures(
         *m.described, first, last, [&](int f) { return interpolate(kf_now, f); },
         [&](int f) {
@@ -345,7 +346,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     }
     result.merged_points = merge_loop_points(loops, &problem, &point_of_track);
   }
-  SubProgress global_progress(progress, 0.475, 0.75, "refinement");
+  SubProgress global_progress(progress, 0.475, 0.75, "global refinement");
   const RefinementReport global_report = refine_bundle(problem, global, global_progress);
   result.refinement = global_report;
   result.refinement.initial_rms = windows.initial_rms;

@@ -203,8 +203,12 @@ nlohmann::json run(const RunSpec& spec) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::pair<std::string, double>> stage_seconds;  // stage, when it started (from t0)
   FunctionProgress progress([&](double, const std::string& stage) {
-    if (!stage.empty() && (stage_seconds.empty() || stage_seconds.back().first != stage))
+    if (!stage.empty() && (stage_seconds.empty() || stage_seconds.back().first != stage)) {
       stage_seconds.emplace_back(stage, seconds(t0));
+      if (spec.long_walk)
+        std::cerr << "bench_track: stage " << stage << " at " << seconds(t0) << " s, RSS " << current_rss_mb()
+                  << " MB (peak " << peak_rss_mb() << ")" << std::endl;
+    }
   });
   const EgomotionResult r = EgomotionTracker::run(
       static_cast<int>(truth.size()),
