@@ -61,15 +61,6 @@ void quiet_ceres_logging() {
   });
 }
 
-// Mean squared error of all observations, each at most 4 loss scales (an outlier counts, but no more than
-// that): how well the current values fit, robust enough to compare two of them.
-double truncated_error(const BundleProblem& p, const RefinementOptions& options) {
-  const double cap = 4.0 * options.loss_scale;
-  double s = 0.0;
-  for (const BundleObservation& o : p.observations) s += std::pow(std::min(cap, observation_error(p, o)), 2);
-  return p.observations.empty() ? 0.0 : s / p.observations.size();
-}
-
 // Of all observations' errors, without a list of them (tens of millions in a long capture).
 double error_rms(const BundleProblem& p) {
   double s = 0.0;
@@ -218,19 +209,6 @@ std::vector<char> triangulate(const BundleProblem& p, const Use& use, std::vecto
   return ok;
 }
 
-// The points not marked in `done` (and marked there once placed) by least squares on their rays from the
-// current poses; points whose rays are too near parallel to fix a position are left as they are.
-void retriangulate(BundleProblem& p, std::vector<char>& done) {
-  std::vector<Eigen::Vector3d> placed;
-  const std::vector<char> ok = triangulate(
-      p, [&](const BundleObservation& o) { return !done[static_cast<std::size_t>(o.point)]; }, &placed);
-  for (std::size_t q = 0; q < p.points.size(); ++q)
-    if (!done[q] && ok[q]) {
-      p.points[q] = placed[q];
-      done[q] = 1;
-    }
-}
-
 // Moves the poses after `last` and the points first seen after it by the rigid motion that took pose
 // `last` from `before` to `after`.
 void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, int last,
@@ -251,11 +229,9 @@ void carry_along(BundleProblem& p, const std::vector<int>& first_pose_of_point, 
       move(&p.points[q].x(), &p.points[q].y());
 }
 
-// At most about `limit` observations: each point keeps its first and last and evenly spaced ones between
-// (at least three), so that every point still ties together the stretch of path that saw it. When even three
-// a point are too many (a long capture: 100 000 frames make about two million points), only some points take
-// part, spread evenly over the poses: for each pose, of the points first seen there, those seen over the
-// longest stretch of poses (a point tied by loop closure spans both visits). Sorted by pose.
+// At most about `limit` observations (refine_bundle calls it only where three a point fit): each point
+// keeps its first and last and evenly spaced ones between (at least three), so that every point still ties
+// together the stretch of path that saw it. Sorted by pose, as refine_bundle keeps them.
 std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& observations,
                                        std::size_t limit) {
   // Observation indices by point, each point's in pose order (no per-point vectors: millions of points).
@@ -281,26 +257,6 @@ std::vector<BundleObservation> thinned(const std::vector<BundleObservation>& obs
   const std::size_t seen = runs.size();
   constexpr std::size_t kMinKeep = 3;
   const std::size_t keep = std::max<std::size_t>(kMinKeep, seen > 0 ? limit / seen : kMinKeep);
-  if (seen * kMinKeep > limit) {
-    // Too many points: by first pose, the longest-seen first, an even quota per pose.
-    auto pose_at = [&](std::size_t k) { return observations[static_cast<std::size_t>(order[k])].pose; };
-    auto span = [&](const Run& r) { return pose_at(r.end - 1) - pose_at(r.begin); };
-    std::stable_sort(runs.begin(), runs.end(), [&](const Run& a, const Run& b) {
-      return pose_at(a.begin) != pose_at(b.begin) ? pose_at(a.begin) < pose_at(b.begin) : span(a) > span(b);
-    });
-    int poses = 0;
-    for (std::size_t r = 0; r < runs.size(); ++r)
-      poses += r == 0 || pose_at(runs[r].begin) != pose_at(runs[r - 1].begin);
-    const std::size_t quota =
-        std::max<std::size_t>(1, limit / kMinKeep / static_cast<std::size_t>(std::max(1, poses)));
-    std::vector<Run> chosen;
-    std::size_t taken = 0;
-    for (std::size_t r = 0; r < runs.size(); ++r) {
-      if (r > 0 && pose_at(runs[r].begin) != pose_at(runs[r - 1].begin)) taken = 0;
-      if (taken++ < quota) chosen.push_back(runs[r]);
-    }
-    runs = std::move(chosen);
-  }
   std::vector<BundleObservation> out;
   out.reserve(std::min(observations.size(), keep * runs.size()));
   for (const Run& run : runs) {
@@ -659,49 +615,21 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     }
   };
   // Too many points for even three observations each in one bundle (about 10 000 frames and more): the
-  // drift between revisits is first taken out by a pose graph on the keyframes (pose_graph_pass; a bundle
-  // over a subset of points, started where the windows left the poses, cannot undo it: ATE 0.047 % on 30 000
-  // frames), then one bundle over a subset of the points, then the detail restored. bench_track, 10 000
-  // frames with the limit at 60 000 (the ratio of 100 000 frames at the default): keyframe ATE 0.033 %
-  // after the windows, 0.0127 % after the graph, 0.0092 % after the subset bundle, 0.0066 % restored;
-  // peak 463 MB. One bundle over every observation: 0.0011 %, 0.95 GB.
+  // drift between revisits is taken out by a pose graph on the keyframes (pose_graph_pass), then the detail
+  // is restored. (A bundle over a subset of the points, started where the windows left the poses, cannot
+  // undo the drift: ATE 0.047 % on 30 000 frames.) bench_track, 10 000 frames with the limit at 60 000 (the
+  // ratio of 100 000 frames at the default): keyframe ATE 0.033 % after the windows, 0.0127 % after the
+  // graph, peak 313 MB; one bundle over every observation: 0.0011 %, 0.95 GB. A subset bundle after the
+  // graph reached 0.0066 % there but made a short synthetic walk worse (0.0084 m against 0.0038 m): not
+  // kept until that is understood.
   std::size_t points_seen = 0;
   for (int k : first_pose_of_point) points_seen += k < n;
   const bool graph = limit > 0 && 3 * points_seen > limit;
   auto solve_global = [&](int max_iterations, double begin, double end, bool first_time) {
     if (graph) {
       const double middle = begin + 0.5 * (end - begin);
-      if (first_time) {
+      if (first_time)
         report.revisits = pose_graph_pass(problem, options, first_pose_of_point, progress, begin, middle);
-        // Kept unless the subset bundle below fits all observations better (with few points a pose it can
-        // also do worse: on a short synthetic walk whose graph was already near the full bundle).
-        std::vector<char> none(problem.points.size(), 0);
-        retriangulate(problem, none);
-        const double graph_fit = truncated_error(problem, options);
-        const BundleProblem::State graph_state = problem.state();
-        // From where the graph put them, one bundle over every pose and some of the points (spread evenly
-        // over the poses, the long-seen first), the others then placed anew from the moved poses.
-        std::vector<BundleObservation> some = thinned(problem.observations, limit);
-        std::vector<char> in_pass(problem.points.size(), 0);
-        for (const BundleObservation& o : some) in_pass[static_cast<std::size_t>(o.point)] = 1;
-        const std::vector<Eigen::Vector3d> poses_before = problem.poses;
-        std::swap(some, problem.observations);
-        solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, middle, middle, &report);
-        std::swap(some, problem.observations);
-        retriangulate(problem, in_pass);
-        for (std::size_t q = 0; q < in_pass.size(); ++q) {
-          const int k = first_pose_of_point[q];
-          if (in_pass[q] || k >= n) continue;
-          const Eigen::Vector3d &b = poses_before[static_cast<std::size_t>(k)],
-                                &a = problem.poses[static_cast<std::size_t>(k)];
-          const double turn = a.z() - b.z(), c = std::cos(turn), sn = std::sin(turn);
-          Eigen::Vector3d& point = problem.points[q];
-          const double dx = point.x() - b.x(), dy = point.y() - b.y();
-          point.x() = a.x() + c * dx - sn * dy;
-          point.y() = a.y() + sn * dx + c * dy;
-        }
-        if (truncated_error(problem, options) > graph_fit) problem.restore(graph_state);
-      }
       restore_detail(first_time ? middle : begin, end);
       return;
     }

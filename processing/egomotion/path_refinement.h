@@ -32,17 +32,6 @@ struct BundleProblem {
   // (pitch, roll) per pose, radians, when the refinement estimates them (RefinementOptions::tilt_prior_deg);
   // empty = level cameras (the planar model).
   std::vector<Eigen::Vector2d> tilts;
-  // The values (not the observations), to try a step and take it back.
-  struct State {
-    std::vector<Eigen::Vector3d> poses, points;
-    std::vector<Eigen::Vector2d> tilts;
-  };
-  State state() const { return {poses, points, tilts}; }
-  void restore(const State& s) {
-    poses = s.poses;
-    points = s.points;
-    tilts = s.tilts;
-  }
 };
 
 struct RefinementOptions {
@@ -54,8 +43,8 @@ struct RefinementOptions {
   // Memory: Ceres keeps about a kilobyte per observation. Above this many, the global pass sees each point
   // through a few of its observations (first, last, evenly between), and windows with both ends held then
   // refine every pose against all observations (0 = always all). 10 000 frames make about 2.3 million.
-  // When even three observations a point are more than this, a pose graph on the keyframes (pose_graph.h,
-  // the revisited places measured by local bundles) comes first, then the bundle over some of the points.
+  // When even three observations a point are more than this, the global pass is a pose graph on the
+  // keyframes instead (pose_graph.h), the revisited places measured by local bundles.
   int global_max_observations = 600000;
   // After the global pass, observations farther off than this (radians) are dropped and the global pass is
   // repeated (0 = keep all).
