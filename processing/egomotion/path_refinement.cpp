@@ -173,8 +173,9 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
   progress.throw_if_cancelled();
 }
 
-// Each point as the least-squares intersection of the rays of the observations `use` accepts (see
-// retriangulate); `ok` marks the points whose rays fix a position.
+// Each point as the least-squares intersection of the rays of the observations `use` accepts (the point
+// nearest all of them: sum (I - d d^T) p = sum (I - d d^T) c); `ok` marks the points whose rays fix a
+// position (not too near parallel).
 template <typename Use>
 std::vector<char> triangulate(const BundleProblem& p, const Use& use, std::vector<Eigen::Vector3d>* placed) {
   std::vector<Eigen::Matrix3d> a(p.points.size(), Eigen::Matrix3d::Zero());
@@ -358,15 +359,14 @@ bool measure_revisit(const BundleProblem& p, const RefinementOptions& options, i
   }
   for (int q : touched) remap[static_cast<std::size_t>(q)] = -1;
   // Each shared point triangulated from either side alone.
-  const bool a_side = true;
   auto from_side = [&](bool want_a) {
     return [&, want_a](const BundleObservation& o) {
       return side[static_cast<std::size_t>(o.point)] == 3 && (o.pose < na) == want_a;
     };
   };
   std::vector<Eigen::Vector3d> at_a, at_b;
-  const std::vector<char> ok_a = triangulate(sub, from_side(a_side), &at_a);
-  const std::vector<char> ok_b = triangulate(sub, from_side(!a_side), &at_b);
+  const std::vector<char> ok_a = triangulate(sub, from_side(true), &at_a);
+  const std::vector<char> ok_b = triangulate(sub, from_side(false), &at_b);
   std::vector<int> shared;
   for (std::size_t q = 0; q < sub.points.size(); ++q)
     if (ok_a[q] && ok_b[q]) shared.push_back(static_cast<int>(q));
