@@ -16,6 +16,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(DXFLIB REQUIRED IMPORTED_TARGET dxflib)
 # Video through FFmpeg's own libraries: frame-exact seeking and real time stamps (processing/capture).
 pkg_check_modules(LIBAV REQUIRED IMPORTED_TARGET libavformat libavcodec libswscale libavutil)
+# Still panoramas' EXIF and GPano XMP (processing/capture/photo_metadata).
+pkg_check_modules(EXIV2 REQUIRED IMPORTED_TARGET exiv2)
 
 if(PLENOPATH_BUILD_STUDIO)
   find_package(Qt5 5.15 REQUIRED COMPONENTS Core Gui Widgets OpenGL Test Concurrent)

@@ -34,10 +34,10 @@ bool operator==(const GpsSample& l, const GpsSample& r) {
 bool operator==(const Capture& l, const Capture& r) {
   return std::tie(l.kind, l.source, l.frame_count, l.width, l.height, l.frame_rate, l.first_frame, l.stride,
                   l.frame_names, l.frame_times_s, l.depth_folder, l.gps_track, l.gps_time_offset_s,
-                  l.rig_mask, l.camera_height_m) ==
+                  l.rig_mask, l.camera_height_m, l.stills) ==
          std::tie(r.kind, r.source, r.frame_count, r.width, r.height, r.frame_rate, r.first_frame, r.stride,
                   r.frame_names, r.frame_times_s, r.depth_folder, r.gps_track, r.gps_time_offset_s,
-                  r.rig_mask, r.camera_height_m);
+                  r.rig_mask, r.camera_height_m, r.stills);
 }
 
 double Capture::frame_time_s(int k) const {

@@ -38,6 +38,9 @@ struct Capture {
   // Optional: an image of the frames' size, black where the rig (trolley, operator, tripod) covers every
   // frame, white elsewhere (as `track --mask`); the tracker's own estimate is used when it is empty.
   std::string rig_mask;
+  // Still panoramas shot from a tripod metres apart (issue 20): solved by the stills pipeline, not tracked
+  // as video. Set when the author imports them as stills, or when tracking finds the folder is stills.
+  bool stills = false;
 
   bool empty() const { return kind == CaptureKind::kNone; }
   // Seconds from the source's frame 0 to kept frame k: its stored time, else (first_frame + k * stride) /

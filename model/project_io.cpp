@@ -110,6 +110,7 @@ json capture_to_json(const Capture& c, const std::string& base) {
               {"gps_time_offset_s", c.gps_time_offset_s},
               {"camera_height_m", c.camera_height_m}};
   if (!c.rig_mask.empty()) out["rig_mask"] = path_relative_to(c.rig_mask, base);
+  if (c.stills) out["stills"] = true;
   if (!c.frame_times_s.empty()) out["frame_times_s"] = c.frame_times_s;  // variable-rate video only
   return out;
 }
@@ -146,6 +147,7 @@ Capture capture_from_json(const JsonReader& r, const std::string& base) {
   }
   c.depth_folder = path_resolved_against(r.string_or("depth_folder", ""), base);
   c.rig_mask = path_resolved_against(r.string_or("rig_mask", ""), base);
+  if (auto stills = r.find("stills")) c.stills = stills->boolean();
   if (auto gps = r.find("gps_track"))
     for (std::size_t i = 0; i < gps->size(); ++i) {
       const JsonReader g = gps->at(i);

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -32,11 +33,13 @@
 #include "model/path_points.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
+#include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/registration/registration.h"
 #include "processing/stills/stills.h"
 #include "processing/stills/stills_detection.h"
+#include "processing/stills/stills_tracking.h"
 
 namespace plenopath::cli {
 namespace {
@@ -74,24 +77,6 @@ std::vector<int> capture_positions(const FrameSource& source) {
     }
   }
   return positions;
-}
-
-// The stills pipeline's result in the tracker's shape, so that registration, anchors and the summary treat
-// both alike; every still is a keyframe.
-EgomotionResult as_tracker_result(const StillsResult& s) {
-  EgomotionResult r;
-  r.path = s.path;
-  r.tracked_points = s.points;
-  for (int i = 0; i < static_cast<int>(s.path.size()); ++i) r.keyframes.push_back(i);
-  r.points = s.refinement.points;
-  r.observations = s.refinement.observations;
-  r.refinement.final_rms = s.refinement.final_rms_deg * M_PI / 180.0;
-  r.scale_source = s.scale_source;
-  r.scale_factor = s.scale_factor;
-  r.floor_points = s.floor_points;
-  r.flagged_frames = static_cast<int>(s.unconnected.size());
-  r.seconds_geometry = s.seconds;
-  return r;
 }
 
 nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* detection, double camera_height,
@@ -246,7 +231,30 @@ Command add_track_command(CLI::App& parent) {
           throw Error("--stills " + options->stills +
                       ": not a folder of panoramas (a video or a rig capture is "
                       "tracked with --capture)");
-        const std::vector<int> positions = capture_positions(*source);
+        // Stills or video: forced, or decided by how well KLT follows corners between neighbours.
+        const StillsChoice choice = choose_stills(
+            n, [&](int i) { return source->read(i); }, forced_stills, plain_folder, !options->no_auto_stills);
+        const bool as_stills = choice.stills;
+        if (choice.detected && as_stills && !options->quiet)
+          std::cerr << "track: " << options->capture << " " << choice.reason
+                    << ". Solving them as stills (--no-auto-stills tracks them anyway)\n";
+        std::vector<int> positions = capture_positions(*source);
+        nlohmann::json stills_order;
+        if (as_stills) {
+          // Stills come in the order they were shot (EXIF time) when every one says when.
+          const StillsFolder folder = stills_folder(*source);
+          if (!options->quiet) {
+            std::cerr << "track: stills ordered " << folder.order;
+            if (folder.stills_with_gps > 0)
+              std::cerr << "; " << folder.stills_with_gps << " carry a GPS position";
+            std::cerr << "\n";
+            for (const std::string& note : folder.notes) std::cerr << "track: " << note << "\n";
+          }
+          stills_order = {
+              {"order", folder.order}, {"with_gps", folder.stills_with_gps}, {"notes", folder.notes}};
+          source = FrameSource::open_capture(folder.capture);
+          std::iota(positions.begin(), positions.end(), 0);
+        }
         // Anchors are read and checked before the long tracking run.
         Anchors anchors;
         if (!options->anchors.empty()) {
@@ -301,17 +309,6 @@ Command add_track_command(CLI::App& parent) {
             throw Error(std::string("--known-distance: ") + e.what());
           }
         }
-        // Stills or video: forced, or decided by how well KLT follows corners between neighbours.
-        StillsDetection detection;
-        bool as_stills = forced_stills;
-        if (!forced_stills && plain_folder && !options->no_auto_stills) {
-          detection = detect_stills(n, [&](int i) { return source->read(i); });
-          as_stills = detection.stills;
-          if (as_stills && !options->quiet)
-            std::cerr << "track: " << options->capture
-                      << " looks like still panoramas, not video: " << detection.reason
-                      << ". Solving them as stills (--no-auto-stills tracks them anyway)\n";
-        }
         EgomotionResult r;
         nlohmann::json stills_summary;
         if (as_stills) {
@@ -328,9 +325,10 @@ Command add_track_command(CLI::App& parent) {
           const StillsResult s = solve_stills(
               n, [&](int i) { return source->read(i); }, so, progress);
           progress.finish();
-          r = as_tracker_result(s);
-          stills_summary =
-              stills_to_json(s, forced_stills ? nullptr : &detection, so.camera_height_m, height_given);
+          r = tracker_result_from_stills(s);
+          stills_summary = stills_to_json(s, choice.detected ? &choice.detection : nullptr,
+                                          so.camera_height_m, height_given);
+          stills_summary["capture_order"] = stills_order;
           if (!options->quiet && !s.unconnected.empty()) {
             std::cerr << "track: stills: " << s.unconnected.size() << " of " << n
                       << " stills connect to no other still:";

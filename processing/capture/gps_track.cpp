@@ -191,7 +191,12 @@ FrameGps gps_at_time(const std::vector<GpsSample>& samples, double t, const GpsM
   const GpsSample& b = *after;
   const GpsSample& a = *(after - 1);
   const double dt = b.time_s - a.time_s;
-  if (dt > options.max_gap_s) return out;
+  if (dt > options.max_gap_s) {
+    // In a gap, a frame next to a sample still takes it: tripod stills carry one sample each, minutes apart.
+    if (t - a.time_s <= options.max_extrapolation_s) return from(a);
+    if (b.time_s - t <= options.max_extrapolation_s) return from(b);
+    return out;
+  }
   if (dt <= 0.0) return from(b);
   const double w = (t - a.time_s) / dt;
   double dlon = b.longitude_deg - a.longitude_deg;

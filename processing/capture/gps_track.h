@@ -48,7 +48,8 @@ double parse_iso8601_utc(const std::string& text);
 struct GpsMatchOptions {
   double time_offset_s = 0.0;  // GPS-track time of the capture's time stamp 0 (Capture::gps_time_offset_s)
   double max_gap_s = 5.0;      // no position for a frame whose neighbouring samples are farther apart
-  double max_extrapolation_s = 0.5;  // frames this far before the first / after the last sample still match
+  double max_extrapolation_s = 0.5;  // frames this far before the first / after the last sample, or from a
+                                     // sample at the edge of a gap, still match
   void check() const;
 };
 

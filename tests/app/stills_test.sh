@@ -53,6 +53,35 @@ assert j["mode"] == "stills" and "detection" not in j["stills"], j
 assert j["stills"]["camera_height_given"] is False, j
 PY
 
+# Stills come in the order they were shot: JPEGs named in reverse, EXIF times (ExifTool) in the true order.
+mkdir -p "$tmp/shot"
+k=0
+for f in $(ls "$tmp/r/frames" | sort); do
+  name=$(printf "IMG_%02d.jpg" $((5 - k)))
+  convert "$tmp/r/frames/$f" -quality 95 "$tmp/shot/$name" || fail "convert $f"
+  exiftool -q -q -overwrite_original "-DateTimeOriginal=2026:11:30 10:0$k:00" "$tmp/shot/$name" ||
+    fail "exiftool $name"
+  k=$((k + 1))
+done
+"$cli" track --stills "$tmp/shot" --camera-height 1.6 --work-width 1024 --out "$tmp/shot.json" --json \
+  > "$tmp/s.json" 2> "$tmp/s.err" || fail "--stills on JPEGs exit $?: $(tail -c 600 "$tmp/s.err")"
+grep -aq "stills ordered by EXIF DateTimeOriginal" "$tmp/s.err" || fail "no word of the order: $(cat "$tmp/s.err")"
+python3 - "$tmp/s.json" "$tmp/shot.json" <<'PY' || fail "stills by time: $(cat "$tmp/s.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["stills"]["capture_order"]["order"] == "by EXIF DateTimeOriginal", j["stills"]
+assert j["stills"]["connected"] == 6, j["stills"]
+names = [f["file"] for f in json.load(open(sys.argv[2]))["frames"]]
+assert names == ["IMG_%02d.jpg" % (5 - k) for k in range(6)], names
+PY
+"$cli" eval-path --estimate "$tmp/shot.json" --truth "$tmp/r/groundtruth.json" --json > "$tmp/se.json" ||
+  fail "eval-path (by time) exit $?"
+python3 - "$tmp/se.json" <<'PY' || fail "stills by time off the truth: $(cat "$tmp/se.json")"
+import json, sys
+e = json.load(open(sys.argv[1]))
+assert e["frames_matched"] == 6 and e["ate_max_m"] < 0.02 and e["rot_max_deg"] < 0.3, e
+PY
+
 # Bad use.
 out=$("$cli" track 2>&1) && fail "track without input succeeded"
 [[ $out == *"--capture"*"--stills"* ]] || fail "unclear message: $out"

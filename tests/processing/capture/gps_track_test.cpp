@@ -138,6 +138,10 @@ TEST(Gpx, GapsAreNotBridged) {
   GpsMatchOptions options;
   options.max_gap_s = 5.0;
   EXPECT_FALSE(gps_at_time(samples, 30.0, options).valid);
+  // Next to a sample at a gap's edge (a tripod still's own fix), the sample itself.
+  EXPECT_TRUE(gps_at_time(samples, 0.2, options).valid);
+  EXPECT_NEAR(gps_at_time(samples, 59.8, options).latitude_deg, 1.0, 1e-12);
+  EXPECT_FALSE(gps_at_time(samples, 0.6, options).valid);
   options.max_gap_s = 100.0;
   const FrameGps mid = gps_at_time(samples, 30.0, options);
   EXPECT_TRUE(mid.valid);
