@@ -1,5 +1,6 @@
 #include "widgets/capture_import_dialog.h"
 
+#include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
@@ -12,7 +13,7 @@
 
 namespace plenopath::widgets {
 
-CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
+CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source, bool stills)
     : QDialog(parent),
       source_(new QLineEdit(source, this)),
       first_(new QSpinBox(this)),
@@ -22,8 +23,14 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
       gps_(new QLineEdit(this)),
       gps_offset_(new QDoubleSpinBox(this)),
       height_(new QDoubleSpinBox(this)),
-      rate_(new QDoubleSpinBox(this)) {
-  setWindowTitle(tr("Import capture"));
+      rate_(new QDoubleSpinBox(this)),
+      stills_(new QCheckBox(tr("Still panoramas shot from a tripod, metres apart"), this)) {
+  setWindowTitle(stills ? tr("Import still panoramas") : tr("Import capture"));
+  stills_->setObjectName("stills");
+  stills_->setChecked(stills);
+  stills_->setToolTip(
+      tr("Ordered by the time each was shot (EXIF), placed by their own GPS when they have it, and solved "
+         "by matching across all pairs instead of tracking. Tracking also finds out by itself."));
   auto* folder_button = new QPushButton(tr("Folder…"), this);
   auto* video_button = new QPushButton(tr("Video…"), this);
   auto* depth_button = new QPushButton(tr("Folder…"), this);
@@ -60,6 +67,7 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
 
   auto* form = new QFormLayout;
   form->addRow(tr("Frames (folder or video)"), source_row);
+  form->addRow(QString(), stills_);
   form->addRow(tr("First frame"), first_);
   form->addRow(tr("Last frame"), last_);
   form->addRow(tr("Keep every"), stride_);
@@ -73,6 +81,13 @@ CaptureImportDialog::CaptureImportDialog(QWidget* parent, const QString& source)
   layout->addLayout(form);
   layout->addWidget(buttons);
 
+  // Stills are a folder of images: no video, no frame rate.
+  const auto stills_changed = [this, video_button](bool on) {
+    video_button->setEnabled(!on);
+    rate_->setEnabled(!on);
+  };
+  connect(stills_, &QCheckBox::toggled, this, stills_changed);
+  stills_changed(stills);
   connect(folder_button, &QPushButton::clicked, this, [this] {
     const QString f =
         QFileDialog::getExistingDirectory(this, tr("Folder of equirectangular frames"), source_->text());
@@ -110,6 +125,7 @@ CaptureImportChoices CaptureImportDialog::choices() const {
   c.camera_height_m = height_->value();
   c.gps_file = gps_->text().trimmed().toStdString();
   c.gps_time_offset_s = gps_offset_->value();
+  c.stills = stills_->isChecked();
   return c;
 }
 

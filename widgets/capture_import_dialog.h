@@ -8,6 +8,7 @@
 
 #include "processing/capture/frame_source.h"
 
+class QCheckBox;
 class QDoubleSpinBox;
 class QLineEdit;
 class QSpinBox;
@@ -20,12 +21,15 @@ struct CaptureImportChoices {
   double camera_height_m = 0.0;    // 0 = unknown
   std::string gps_file;            // optional GPS track
   double gps_time_offset_s = 0.0;  // GPS-track time of frame 0, seconds after the track's first sample
+  // Still panoramas from a tripod (issue 20): ordered by their EXIF time, located by their own GPS, and
+  // solved by the stills pipeline instead of tracked.
+  bool stills = false;
 };
 
 class CaptureImportDialog : public QDialog {
   Q_OBJECT
  public:
-  explicit CaptureImportDialog(QWidget* parent = nullptr, const QString& source = {});
+  explicit CaptureImportDialog(QWidget* parent = nullptr, const QString& source = {}, bool stills = false);
   CaptureImportChoices choices() const;
 
  private:
@@ -38,6 +42,7 @@ class CaptureImportDialog : public QDialog {
   QDoubleSpinBox* gps_offset_;
   QDoubleSpinBox* height_;
   QDoubleSpinBox* rate_;
+  QCheckBox* stills_;
 };
 
 }  // namespace plenopath::widgets

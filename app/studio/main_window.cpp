@@ -227,6 +227,10 @@ void MainWindow::create_actions() {
   QAction* import_capture = file->addAction(tr("Import &capture (folder or video)…"));
   import_capture->setShortcut(tr("Ctrl+Shift+C"));
   new ImportCaptureReaction(import_capture, *this);
+  QAction* import_stills = file->addAction(tr("Import &still panoramas (tripod)…"));
+  import_stills->setObjectName("import_stills");
+  import_stills->setShortcut(tr("Ctrl+Shift+I"));
+  new ImportCaptureReaction(import_stills, *this, true);
   QAction* import_path = file->addAction(tr("Import camera &path…"));
   new ImportPathReaction(import_path, *this);
   QAction* export_tour = file->addAction(tr("&Export tour…"));
@@ -481,10 +485,12 @@ void MainWindow::import_plan(const QString& dxf_file) {
   map_->reset_camera();
 }
 
-void MainWindow::import_capture(const QString& folder_or_video) {
-  widgets::CaptureImportDialog dialog(this, folder_or_video);
+void MainWindow::import_capture(const QString& folder_or_video, bool stills) {
+  widgets::CaptureImportDialog dialog(this, folder_or_video, stills);
   if (dialog.exec() != QDialog::Accepted) return;
-  if (!tasks_->start(tr("Import capture"), import_capture_task(dialog.choices())))
+  const widgets::CaptureImportChoices choices = dialog.choices();
+  if (!tasks_->start(choices.stills ? tr("Import still panoramas") : tr("Import capture"),
+                     import_capture_task(choices)))
     show_error(tr("Busy"), tr("Another task is running; wait for it or cancel it first."));
 }
 

@@ -46,7 +46,7 @@ class MainWindow : public QMainWindow {
   bool maybe_save();
   // Import dialogs (empty = ask for the file first).
   void import_plan(const QString& dxf_file);
-  void import_capture(const QString& folder_or_video);
+  void import_capture(const QString& folder_or_video, bool stills = false);
   // Offers the autosave of an untitled document left by a crash, if any.
   void offer_untitled_recovery();
 

@@ -82,7 +82,7 @@ void SaveProjectReaction::on_triggered() {
 
 void ImportPlanReaction::on_triggered() { window_.import_plan(QString()); }
 
-void ImportCaptureReaction::on_triggered() { window_.import_capture(QString()); }
+void ImportCaptureReaction::on_triggered() { window_.import_capture(QString(), stills_); }
 
 void ImportPathReaction::on_triggered() {
   const QString file = QFileDialog::getOpenFileName(&window_, QObject::tr("Camera path"), QString(),

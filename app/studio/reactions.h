@@ -52,10 +52,15 @@ class ImportPlanReaction : public Reaction {
   void on_triggered() override;
 };
 
+// File > Import capture, or (stills) File > Import still panoramas: the same dialog, its stills box ticked.
 class ImportCaptureReaction : public Reaction {
  public:
-  using Reaction::Reaction;
+  ImportCaptureReaction(QAction* action, MainWindow& window, bool stills = false)
+      : Reaction(action, window), stills_(stills) {}
   void on_triggered() override;
+
+ private:
+  bool stills_;
 };
 
 class ImportPathReaction : public Reaction {

@@ -8,8 +8,10 @@
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/gps_track.h"
+#include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/sampling/cg_capture.h"
+#include "processing/stills/stills_tracking.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/project_document.h"
@@ -25,8 +27,28 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
     const std::unique_ptr<FrameSource> source = FrameSource::open(choices.source, choices.options);
     progress.checkpoint(0.9, "listing " + std::to_string(source->frame_count()) + " frames");
     const bool same_source = project.capture.source == source->source();
-    project.capture = capture_from_frame_source(*source, project.capture);
-    if (!same_source) project.capture.gps_track.clear();  // another capture's track would be wrong
+    std::string stills_summary;
+    if (choices.stills) {
+      if (source->kind() != CaptureKind::kImageFolder || source->head_count() > 0)
+        throw Error(choices.source +
+                    ": still panoramas are a folder of images (a video or a rig capture is "
+                    "imported without \"still panoramas\")");
+      progress.checkpoint(0.5, "reading the stills' metadata");
+      Capture before = project.capture;
+      if (!same_source) before.gps_track.clear();
+      const StillsFolder folder = stills_folder(*source, before);
+      project.capture = folder.capture;
+      stills_summary = " still panoramas, ordered " + folder.order;
+      if (folder.stills_with_gps > 0)
+        stills_summary += ", " + std::to_string(folder.stills_with_gps) + " with a GPS position";
+      if (!folder.notes.empty())
+        stills_summary +=
+            "; " + std::to_string(folder.notes.size()) + " note(s), the first: " + folder.notes.front();
+    } else {
+      project.capture = capture_from_frame_source(*source, project.capture);
+      project.capture.stills = false;
+      if (!same_source) project.capture.gps_track.clear();  // another capture's track would be wrong
+    }
     if (choices.camera_height_m > 0) project.capture.camera_height_m = choices.camera_height_m;
     std::string gps_summary;
     if (!choices.gps_file.empty()) {
@@ -37,7 +59,8 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
       gps_summary = ", " + std::to_string(track.samples.size()) + " GPS points";
       for (const std::string& note : track.notes) gps_summary += " (" + note + ")";
     }
-    progress.report(1.0, std::to_string(source->frame_count()) + " frames" + gps_summary);
+    progress.report(1.0, std::to_string(source->frame_count()) +
+                             (choices.stills ? stills_summary : std::string(" frames")) + gps_summary);
     return TaskResult{std::move(project), widgets::kCaptureChanged};
   };
 }
@@ -84,23 +107,47 @@ widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choice
 widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placement) {
   return [placement](Project project, Progress& progress) {
     if (project.capture.empty()) throw Error("the project has no capture to track");
-    const std::shared_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
+    std::shared_ptr<FrameSource> source = FrameSource::open_capture(project.capture);
     const int n = source->frame_count();
     if (n < 2) throw Error("the capture has fewer than two frames");
-    EgomotionOptions options;
-    options.camera_height_m = project.capture.camera_height_m;
-    options.check();
+    const auto read = [&](int i) {
+      progress.throw_if_cancelled();
+      return source->read(i);
+    };
+    // Stills or video: as the author imported it, else judged by how well KLT follows neighbours.
+    progress.checkpoint(0.0, "looking at the frames");
+    const bool plain_folder = source->kind() == CaptureKind::kImageFolder && source->head_count() == 0;
+    const StillsChoice choice = choose_stills(n, read, project.capture.stills, plain_folder);
+    unsigned changed = widgets::kPathChanged | widgets::kVisibilityChanged;
+    std::string mode;
+    if (choice.stills && !project.capture.stills) {  // found out now: the stills' order and GPS too
+      project.capture = stills_folder(*source, project.capture).capture;
+      source = FrameSource::open_capture(project.capture);
+      changed |= widgets::kCaptureChanged;
+      mode = "solved as still panoramas (" + choice.reason + ")";
+    }
     // With a plan, placing the path takes the last tenth of the progress.
     const bool place = !project.plan.empty();
     SubProgress tracking_progress(progress, 0.0, place ? 0.9 : 1.0);
-    // run() gives reading and tracking the frames the first half of the progress.
-    EgomotionResult result = EgomotionTracker::run(
-        n,
-        [&](int i) {
-          progress.throw_if_cancelled();
-          return source->read(i);
-        },
-        options, tracking_progress);
+    EgomotionResult result;
+    int unconnected = 0;
+    if (choice.stills) {
+      StillsOptions options;
+      if (project.capture.camera_height_m > 0) options.camera_height_m = project.capture.camera_height_m;
+      options.check();
+      const StillsResult stills = solve_stills(n, read, options, tracking_progress);
+      unconnected = static_cast<int>(stills.unconnected.size());
+      result = tracker_result_from_stills(stills);
+      if (mode.empty()) mode = "solved as still panoramas";
+      mode += ": " + std::to_string(n - unconnected) + " of " + std::to_string(n) + " connected";
+      if (unconnected > 0) mode += "; place the others with Process > Place still by hand";
+    } else {
+      EgomotionOptions options;
+      options.camera_height_m = project.capture.camera_height_m;
+      options.check();
+      // run() gives reading and tracking the frames the first half of the progress.
+      result = EgomotionTracker::run(n, read, options, tracking_progress);
+    }
     // The tracker numbers frames 0..n-1 in source order; the project uses capture indices.
     std::vector<int> positions(result.path.size());
     for (int i = 0; i < static_cast<int>(positions.size()); ++i)
@@ -132,10 +179,13 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
           summary = std::string("tracked; not placed on the plan: ") + e.what();
         }
       }
+      if (!mode.empty()) summary = mode + "; " + summary;
       progress.report(1.0, summary);
       if (placement) *placement = {std::move(choices), summary};
+    } else if (!mode.empty()) {
+      progress.report(1.0, mode);
     }
-    return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
+    return TaskResult{std::move(project), changed};
   };
 }
 
