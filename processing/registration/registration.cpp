@@ -216,8 +216,29 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
     if (f.piece >= 0 && f.piece < piece_count)
       frames[static_cast<std::size_t>(f.piece)].push_back(f.position());
 
+  // Pieces placed in the path's own frame share it (the runs of one group of stills, pieces the tracker
+  // joined): they are registered together, by all their frames and points, and move alike.
+  std::vector<int> shared;
+  if (piece_count > 1)
+    for (int k = 0; k < piece_count; ++k)
+      if (path.pieces[static_cast<std::size_t>(k)].placed) shared.push_back(k);
+  if (shared.size() < 2) shared.clear();
+  for (std::size_t s = 1; s < shared.size(); ++s) {
+    const auto k = static_cast<std::size_t>(shared[s]), first = static_cast<std::size_t>(shared.front());
+    frames[first].insert(frames[first].end(), frames[k].begin(), frames[k].end());
+    by_piece[first].insert(by_piece[first].end(), by_piece[k].begin(), by_piece[k].end());
+  }
+
   RegistrationResult result;
   for (int k = 0; k < piece_count; ++k) {
+    if (!shared.empty() && k != shared.front() && std::count(shared.begin(), shared.end(), k)) {
+      PieceRegistration r = result.pieces[static_cast<std::size_t>(shared.front())];
+      r.piece = k;
+      r.message = "placed with piece " + std::to_string(shared.front() + 1) + " (they share one frame)" +
+                  (r.message.empty() ? std::string() : "; " + r.message);
+      result.pieces.push_back(std::move(r));
+      continue;
+    }
     const double begin = 0.05 + 0.95 * k / piece_count, end = 0.05 + 0.95 * (k + 1) / piece_count;
     SubProgress sub(progress, begin, end,
                     piece_count == 1 ? std::string() : "piece " + std::to_string(k + 1));
