@@ -26,6 +26,7 @@ Command add_eval_path_command(CLI::App& parent);
 Command add_export_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
 Command add_make_sample_command(CLI::App& parent);
+Command add_place_still_command(CLI::App& parent);
 Command add_plan_info_command(CLI::App& parent);
 Command add_refine_command(CLI::App& parent);
 Command add_register_command(CLI::App& parent);
