@@ -524,8 +524,27 @@ QPoint MapView::widget_pixel_of(const Eigen::Vector2d& plan_point) {
                 static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr)));
 }
 
+void MapView::start_point_pick(const QString& hint) {
+  picking_point_ = true;
+  setCursor(Qt::CrossCursor);
+  setFocus();
+  emit message(hint);
+}
+
+void MapView::cancel_point_pick() {
+  if (!picking_point_) return;
+  picking_point_ = false;
+  unsetCursor();
+  emit point_pick_cancelled();
+}
+
 bool MapView::event(QEvent* e) {
-  if (handle_anchor_event(e)) {
+  if (picking_point_ && e->type() == QEvent::KeyPress &&
+      static_cast<QKeyEvent*>(e)->key() == Qt::Key_Escape) {
+    cancel_point_pick();
+    return true;
+  }
+  if (!picking_point_ && handle_anchor_event(e)) {
     e->accept();
     return true;
   }
@@ -597,6 +616,13 @@ int MapView::placement_ghost_near(const QPoint& pixel, double radius_px) {
 }
 
 void MapView::handle_click(const QPoint& pixel) {
+  if (picking_point_) {
+    picking_point_ = false;
+    unsetCursor();
+    const Eigen::Vector2d q = plan_point_at(pixel);
+    emit point_picked(q.x(), q.y());
+    return;
+  }
   const int best = frame_near(pixel, 15.0);  // a click within 15 pixels of the path counts
   // A ghost wins when it is nearer than the path (within 10 pixels).
   if (const int ghost = placement_ghost_near(pixel, 10.0); ghost >= 0) {

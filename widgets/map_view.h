@@ -11,7 +11,10 @@
 // thin line to where its frame is on the path (the residual).
 // Placement ghosts: other placements registration found for a piece of the path (issue 19), drawn as thin
 // violet lines with their rank and score; a click on one asks for it (placement_clicked).
-// Renders are requested and coalesced (one per event-loop turn), never forced by the model.
+// Point picking (Process > Place still on plan): after start_point_pick the next plain click anywhere on
+// the map gives its plan point (point_picked) instead of going to a frame; Esc gives up
+// (point_pick_cancelled). Renders are requested and coalesced (one per event-loop turn), never forced by the
+// model.
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -76,6 +79,11 @@ class MapView : public QVTKOpenGLNativeWidget {
   // Replaces the placement ghosts (empty: none).
   void set_placement_ghosts(std::vector<MapPlacementGhost> ghosts);
   const std::vector<MapPlacementGhost>& placement_ghosts() const { return ghosts_; }
+  // The next plain click gives a plan point (see above); `hint` goes to the status bar.
+  void start_point_pick(const QString& hint);
+  void cancel_point_pick();
+  bool is_picking_point() const { return picking_point_; }
+
   // Index into placement_ghosts() of the ghost nearest `pixel` within `radius_px`, or -1.
   int placement_ghost_near(const QPoint& pixel, double radius_px);
 
@@ -86,6 +94,9 @@ class MapView : public QVTKOpenGLNativeWidget {
   void message(const QString& text);
   // The user clicked on a placement ghost (nearer than the path): candidate `candidate` of piece `piece`.
   void placement_clicked(int piece, int candidate);
+  // Point picking: the plan point clicked (metres), or Esc.
+  void point_picked(double x, double y);
+  void point_pick_cancelled();
 
  protected:
   bool event(QEvent* event) override;
@@ -150,6 +161,7 @@ class MapView : public QVTKOpenGLNativeWidget {
   AnchorDrag drag_;
   QTimer* render_timer_;
   QPoint press_pixel_;
+  bool picking_point_ = false;
   bool camera_fitted_ = false;
 };
 

@@ -342,6 +342,13 @@ void MainWindow::create_actions() {
       tr("Put the tracked path on the plan by its points on the walls; the runners-up are "
          "drawn as ghosts, click one to take it instead. One undo step"));
   new PlacePathOnPlanReaction(place, *this);
+  QAction* place_still = process->addAction(tr("Place still &on plan"));
+  place_still->setObjectName("place_still");
+  place_still->setShortcut(tr("Ctrl+Shift+O"));
+  place_still->setStatusTip(
+      tr("Click on the map where the still on screen was shot: its heading and position are found from "
+         "the walls; a second click toward where it looks fixes a heading the wrong way round"));
+  new PlaceStillReaction(place_still, *this);
   QAction* resample = process->addAction(tr("&Resample keyframes"), this, [this] { sampling_->resample(0); });
   resample->setShortcut(tr("Ctrl+Shift+K"));
   QAction* refine = process->addAction(tr("Refine path with &anchors"));

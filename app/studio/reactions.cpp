@@ -12,6 +12,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <opencv2/imgproc.hpp>
@@ -206,6 +207,77 @@ void TrackPathReaction::on_triggered() {
   auto outcome = std::make_shared<PlacementOutcome>();
   if (window_.tasks().start(QObject::tr("Track camera path"), track_path_task(outcome)))
     offer_when_applied(window_, outcome);
+}
+
+PlaceStillReaction::PlaceStillReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.document(), &widgets::ProjectDocument::changed, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  connect(window.map_view(), &widgets::MapView::point_picked, this, &PlaceStillReaction::on_point);
+  connect(window.map_view(), &widgets::MapView::point_pick_cancelled, this, [this] {
+    if (stage_ != Stage::kIdle) finish(QObject::tr("Still placement ended"));
+  });
+  update_enabled();
+}
+
+void PlaceStillReaction::update_enabled() {
+  const Project& p = window_.document().project();
+  const bool ok = !window_.tasks().is_running() && !p.path.empty() && !p.plan.empty() &&
+                  p.capture.kind == CaptureKind::kImageFolder;
+  action()->setEnabled(ok);
+  action()->setToolTip(p.plan.empty() ? QObject::tr("Import the floor plan first")
+                       : p.path.empty()
+                           ? QObject::tr("Track the stills first (Process > Track camera path)")
+                           : QObject::tr("Place the still on screen by clicking where it was shot"));
+}
+
+void PlaceStillReaction::on_triggered() {
+  const Project& p = window_.document().project();
+  const int position = window_.document().current_position();
+  if (position < 0 || position >= static_cast<int>(p.path.size())) return;
+  frame_ = p.path.frames[static_cast<std::size_t>(position)].index;
+  stage_ = Stage::kSpot;
+  const QString name = frame_ < static_cast<int>(p.capture.frame_names.size())
+                           ? QString::fromStdString(p.capture.frame_names[static_cast<std::size_t>(frame_)])
+                           : QObject::tr("frame %1").arg(frame_);
+  window_.map_view()->start_point_pick(
+      QObject::tr("Click on the map where %1 was shot (Esc cancels)").arg(name));
+}
+
+void PlaceStillReaction::finish(const QString& text) {
+  stage_ = Stage::kIdle;
+  window_.map_view()->cancel_point_pick();
+  if (!text.isEmpty()) window_.statusBar()->showMessage(text, 20000);
+}
+
+void PlaceStillReaction::on_point(double x, double y) {
+  if (stage_ == Stage::kIdle) return;
+  std::optional<double> hint;
+  if (stage_ == Stage::kSpot) {
+    click_x_ = x;
+    click_y_ = y;
+  } else {
+    if (std::hypot(x - click_x_, y - click_y_) < 1e-3) return finish({});
+    hint = std::atan2(y - click_y_, x - click_x_) * 180.0 / M_PI;
+  }
+  const bool then_direction = stage_ == Stage::kSpot;
+  stage_ = Stage::kIdle;
+  auto summary = std::make_shared<std::string>();
+  if (!window_.tasks().start(QObject::tr("Place still on plan"),
+                             place_still_task(frame_, {click_x_, click_y_}, hint, summary)))
+    return finish(QObject::tr("Another task is running; wait for it or cancel it first."));
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = connect(&window_.tasks(), &widgets::TaskRunner::finished, this,
+                        [this, connection, summary, then_direction](bool applied) {
+                          QObject::disconnect(*connection);
+                          if (!applied) return finish({});
+                          const QString text = QString::fromStdString(*summary);
+                          if (!then_direction) return finish(text);
+                          stage_ = Stage::kDirection;
+                          window_.map_view()->start_point_pick(
+                              text + QObject::tr(" — if the heading is wrong, click toward where the still's "
+                                                 "centre looks; Esc keeps it"));
+                        });
 }
 
 PlacePathOnPlanReaction::PlacePathOnPlanReaction(QAction* action, MainWindow& window)

@@ -120,6 +120,26 @@ class TrackPathReaction : public Reaction {
 
 // Process > Place path on plan (placement.h): a task with progress and Cancel, one undo step; the
 // candidates go to the window's PlacementService (ghosts on the map).
+// Process > Place still on plan (Ctrl+Shift+O): the still on screen placed from where the author clicks on
+// the map (processing/stills/still_on_plan.h). Click 1 is the menu, click 2 the spot where it was shot (the
+// heading and the position are then found); an optional click 3, toward where the still's centre looks,
+// fixes a heading that came out the wrong way round. Each placement is a task and one undo step; Esc ends.
+class PlaceStillReaction : public Reaction {
+ public:
+  PlaceStillReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+  void on_point(double x, double y);
+  void finish(const QString& text);
+
+  enum class Stage { kIdle, kSpot, kDirection };
+  Stage stage_ = Stage::kIdle;
+  int frame_ = -1;                        // capture index of the still being placed
+  double click_x_ = 0.0, click_y_ = 0.0;  // the spot clicked
+};
+
 class PlacePathOnPlanReaction : public Reaction {
  public:
   PlacePathOnPlanReaction(QAction* action, MainWindow& window);

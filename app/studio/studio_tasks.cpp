@@ -11,6 +11,7 @@
 #include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/sampling/cg_capture.h"
+#include "processing/stills/still_on_plan.h"
 #include "processing/stills/stills_tracking.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
@@ -140,7 +141,8 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
       result = tracker_result_from_stills(stills);
       if (mode.empty()) mode = "solved as still panoramas";
       mode += ": " + std::to_string(n - unconnected) + " of " + std::to_string(n) + " connected";
-      if (unconnected > 0) mode += "; place the others with Process > Place still by hand";
+      if (unconnected > 0)
+        mode += "; place each of the others with Process > Place still on plan (Ctrl+Shift+O) and a click";
     } else {
       EgomotionOptions options;
       options.camera_height_m = project.capture.camera_height_m;
@@ -196,6 +198,35 @@ widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> 
     PlacementChoices choices = place_project_on_plan(project, progress, true, &summary);
     progress.report(1.0, summary);
     if (placement) *placement = {std::move(choices), summary};
+    return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
+  };
+}
+
+widgets::TaskFunction place_still_task(int frame, Eigen::Vector2d click,
+                                       std::optional<double> heading_hint_deg,
+                                       std::shared_ptr<std::string> summary) {
+  return [=](Project project, Progress& progress) {
+    if (project.plan.empty()) throw Error("the project has no plan to place the still on");
+    if (!project.path.find_frame(frame)) throw Error("the path has no frame " + std::to_string(frame));
+    if (project.capture.kind != CaptureKind::kImageFolder)
+      throw Error("stills are placed from a folder of images; this capture is a video");
+    if (!(project.capture.camera_height_m > 0))
+      throw Error("the camera height is unknown: set it in File > Import still panoramas");
+    progress.checkpoint(0.01, "reading the still");
+    const auto source = FrameSource::open_capture(project.capture);
+    if (frame >= source->frame_count())
+      throw Error("frame " + std::to_string(frame) + " is beyond the capture");
+    StillOnPlanOptions options;
+    options.camera_height_m = project.capture.camera_height_m;
+    options.heading_hint_deg = heading_hint_deg;
+    SubProgress placing(progress, 0.02, 0.98);
+    const StillPlacement placed =
+        place_still_on_plan(source->read(frame), project.plan, click, options, placing);
+    project.path = path_with_still_placed(project.path, frame, placed);
+    project.visibility = {};  // cells belong to the old path
+    const std::string text = source->frame_name(frame) + ": " + placed.summary;
+    if (summary) *summary = text;
+    progress.report(1.0, text);
     return TaskResult{std::move(project), widgets::kPathChanged | widgets::kVisibilityChanged};
   };
 }

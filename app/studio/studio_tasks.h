@@ -1,7 +1,10 @@
 #pragma once
 // The studio's background tasks: each wraps a processing step as a TaskFunction (snapshot in, changed
 // project out) so it runs on a worker with progress and cancel, and lands as one undo step.
+#include <Eigen/Core>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "app/studio/placement.h"
 #include "widgets/capture_import_dialog.h"
@@ -24,6 +27,12 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
 // Process > Place path on plan: the path placed on the plan by its tracked points (placement.h); fails with
 // the reason when no piece fits. `placement` gets the candidates.
 widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement);
+// Process > Place still on plan: the still at capture index `frame` placed from the author's click (plan
+// metres), with the heading near `heading_hint_deg` when given; its piece moves with it, the visibility
+// cells go. `summary` receives the placement's sentence.
+widgets::TaskFunction place_still_task(int frame, Eigen::Vector2d click,
+                                       std::optional<double> heading_hint_deg,
+                                       std::shared_ptr<std::string> summary);
 // Visibility events, cells and critical lines along the path (processing/visibility/visibility.h).
 widgets::TaskFunction compute_visibility_task();
 // The path refined with the anchors as priors (Ceres pose graph with a drift model, plus the capture's GPS
