@@ -28,6 +28,10 @@ void StillsOptions::check() const {
                  "must be >= two_view.min_inliers", min_pair_inliers);
   require_option(min_pair_coverage_deg >= 0 && min_pair_coverage_deg <= 360, s + "min_pair_coverage_deg",
                  "must be in [0, 360]", min_pair_coverage_deg);
+  require_option(consecutive_min_inliers >= two_view.min_inliers, s + "consecutive_min_inliers",
+                 "must be >= two_view.min_inliers", consecutive_min_inliers);
+  require_option(consecutive_min_coverage_deg >= 0 && consecutive_min_coverage_deg <= 360,
+                 s + "consecutive_min_coverage_deg", "must be in [0, 360]", consecutive_min_coverage_deg);
   require_option(min_direction_parallax_deg >= 0, s + "min_direction_parallax_deg", "must be >= 0",
                  min_direction_parallax_deg);
   require_option(max_direction_residual_deg > 0, s + "max_direction_residual_deg", "must be > 0",
@@ -187,8 +191,12 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
                  static_cast<double>(std::count_if(bins.begin(), bins.end(), [](int c) { return c >= 3; }));
         };
         w.report.coverage_deg = std::min(covered(bins_a), covered(bins_b));
-        w.report.edge =
+        const bool strong =
             e.inliers >= options.min_pair_inliers && w.report.coverage_deg >= options.min_pair_coverage_deg;
+        const bool weak = b == a + 1 && e.inliers >= options.consecutive_min_inliers &&
+                          w.report.coverage_deg >= options.consecutive_min_coverage_deg &&
+                          e.median_parallax_deg >= options.min_direction_parallax_deg;
+        w.report.edge = strong || weak;
         std::vector<Eigen::Vector3d> ia, ib;
         for (std::size_t k = 0; k < matches.size(); ++k)
           if (e.inlier[k]) {
@@ -202,6 +210,9 @@ StillsResult solve_stills(int count, const std::function<cv::Mat(int)>& read, co
           w.report.length_m =
               baseline_from_floor(ia, ib, e.motion.turn, e.motion.direction, options.camera_height_m,
                                   options.min_floor_points, 2.0, &w.report.floor_points);
+        // A consecutive pair let in on less evidence must bring its own length (its floor): in a chain of
+        // such pairs nothing else would fix how far apart they are, and the group would fail as a whole.
+        if (!strong && !(w.report.length_m > 0)) w.report.edge = false;
       }
     }
     std::lock_guard<std::mutex> lock(progress_mutex);

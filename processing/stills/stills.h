@@ -40,6 +40,12 @@ struct StillsOptions {
   // see the same room share much more of the horizon. 120 deg was chosen on the POV-Ray stills scene
   // (wrong edges there covered 40-130 deg, right ones 70-230 deg): a trade, not a proof.
   double min_pair_coverage_deg = 120.0;
+  // Stills next to each other in capture order (the author carried the tripod from one to the other) need
+  // less: a corridor's plain walls give few matches over a narrow view, and the false match the coverage
+  // test is there for (the same furniture in two rooms) seldom falls between two consecutive shots. Such a
+  // pair needs its direction (parallax) and its length from the floor it sees.
+  int consecutive_min_inliers = 30;
+  double consecutive_min_coverage_deg = 30.0;
   // Below this median parallax of its verified matches a pair's direction of travel is not trusted (the
   // stills are nearly on the same spot); the pair still gives its turn.
   double min_direction_parallax_deg = 2.0;
