@@ -37,6 +37,7 @@
 #include "processing/egomotion/egomotion.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/registration/registration.h"
+#include "processing/stills/candidate_fit.h"
 #include "processing/stills/stills.h"
 #include "processing/stills/stills_detection.h"
 #include "processing/stills/stills_tracking.h"
@@ -350,12 +351,43 @@ Command add_track_command(CLI::App& parent) {
           RegistrationOptions ro;
           ro.camera_height_m = options->camera_height;
           ConsoleProgress register_progress("track: registration", options->quiet);
-          const RegistrationResult reg =
-              register_on_plan(r.path, r.tracked_points, plan, ro, register_progress);
+          RegistrationResult reg = register_on_plan(r.path, r.tracked_points, plan, ro, register_progress);
           register_progress.finish();
+          if (as_stills) {  // repeated rooms: what the stills see picks among the placements
+            CandidateFitOptions fit_options;
+            fit_options.fit.camera_height_m = options->camera_height;
+            ConsoleProgress fit_progress("track: stills against the plan", options->quiet);
+            const CandidateFitReport fit = rerank_by_still_fit(
+                &reg, r.path, [&](int i) { return source->read(i); }, plan, fit_options, fit_progress);
+            fit_progress.finish();
+            if (!options->quiet && fit.pieces_reordered > 0)
+              std::cerr << "track: stills: " << fit.pieces_reordered
+                        << " piece(s) placed by what the stills see rather than by their points\n";
+          }
           registration = registration_to_json(reg);
           if (!options->quiet) print_registration(std::cerr, reg);
-          require_registered(reg, options->plan);
+          // Stills that connected to no other have no points of their own to register by: the others are
+          // placed, and these are named for `place-still` (one click each).
+          const bool some_placed = std::any_of(reg.pieces.begin(), reg.pieces.end(),
+                                               [](const PieceRegistration& p) { return p.ok; });
+          if (!as_stills || !some_placed) require_registered(reg, options->plan);
+          if (as_stills) {
+            nlohmann::json unplaced = nlohmann::json::array();
+            for (const PieceRegistration& p : reg.pieces) {
+              if (p.ok) continue;
+              const CameraPath piece = r.path.piece_path(p.piece);
+              for (const PathFrame& f : piece.frames)
+                unplaced.push_back(f.file.empty() ? std::to_string(f.index) : f.file);
+            }
+            registration["unplaced_stills"] = unplaced;
+            if (!options->quiet && !unplaced.empty()) {
+              std::cerr << "track: stills: " << unplaced.size()
+                        << " still(s) could not be placed on the plan by themselves:";
+              for (const auto& u : unplaced) std::cerr << " " << u.get<std::string>();
+              std::cerr << "\ntrack: place each with `plenopath place-still --plan " << options->plan
+                        << " --image STILL --at X Y` (roughly where it was shot)\n";
+            }
+          }
           r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
           if (!options->no_refine) {
             PlanRefinementOptions refine_options;

@@ -3,6 +3,8 @@
 #include <cstdio>
 
 #include "model/error.h"
+#include "processing/capture/frame_source.h"
+#include "processing/stills/candidate_fit.h"
 #include "widgets/anchor_commands.h"
 
 namespace plenopath::studio {
@@ -43,6 +45,16 @@ PlacementChoices place_project_on_plan(Project& project, Progress& progress, boo
   choices.refinement_options.registration = options;
   SubProgress search(progress, 0.0, 0.8, "registration");
   choices.result = register_on_plan(project.path, project.path_points, project.plan, options, search);
+  if (project.capture.stills && project.capture.kind == CaptureKind::kImageFolder) {
+    // Repeated rooms fit a group's points alike: what the stills see picks among the placements.
+    const auto source = FrameSource::open_capture(project.capture);
+    CandidateFitOptions fit_options;
+    fit_options.fit.camera_height_m = options.camera_height_m;
+    SubProgress fitting(progress, 0.8, 0.85, "the stills against the plan");
+    rerank_by_still_fit(
+        &choices.result, project.path, [&](int i) { return source->read(i); }, project.plan, fit_options,
+        fitting);
+  }
 
   int fitted = 0;
   std::string failures;
@@ -63,7 +75,7 @@ PlacementChoices place_project_on_plan(Project& project, Progress& progress, boo
     throw Error("no piece of the path fits the plan:\n" + failures);
   }
   CameraPath placed;
-  SubProgress refining(progress, 0.8, 1.0, "refinement on the walls");
+  SubProgress refining(progress, 0.85, 1.0, "refinement on the walls");
   apply_placement(choices, choices.choice, &placed, &project.path_points, &choices.refinement, refining);
   if (std::optional<VisibilityCells> cells = widgets::cells_following_path(project, placed))
     project.visibility = std::move(*cells);

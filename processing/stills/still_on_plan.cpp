@@ -311,6 +311,34 @@ StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, 
   return out;
 }
 
+std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,
+                                  const std::vector<Eigen::Vector3d>& poses,
+                                  const StillOnPlanOptions& options) {
+  options.check();
+  if (still.empty()) throw Error("the still is empty");
+  const int width = options.work_width;
+  Walls walls;
+  for (const PlanSegment& s : plan.occluder_segments())
+    if ((s.b - s.a).squaredNorm() > 1e-12) walls.start.push_back(s.a), walls.along.push_back(s.b - s.a);
+  if (walls.start.empty())
+    throw Error("the plan has no sight-blocking segments: mark the walls' layer as blocking sight first");
+  const cv::Mat map = edge_distance(still, width, options.truncation_px);
+  const Scorer scorer{map,
+                      width,
+                      width / 2,
+                      options.camera_height_m,
+                      options.top_above_camera_m,
+                      options.nadir_limit_deg * M_PI / 180.0};
+  const double step = 2.0 * M_PI / width;
+  std::vector<double> fits;
+  for (const Eigen::Vector3d& pose : poses) {
+    const PlanProfile profile = plan_profile(walls, pose.head<2>(), width);
+    const int j = ((static_cast<int>(std::lround(pose.z() * M_PI / 180.0 / step)) % width) + width) % width;
+    fits.push_back(scorer.score(profile, j, 1));
+  }
+  return fits;
+}
+
 cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x, double y,
                            double heading_deg, const StillOnPlanOptions& options) {
   options.check();

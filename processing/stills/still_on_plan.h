@@ -61,6 +61,12 @@ StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, 
                                    const StillOnPlanOptions& options = {},
                                    Progress& progress = null_progress());
 
+// The fit (score_px as above, lower is better) of the still at each of `poses` (x, y in plan metres, heading
+// in degrees), with no search: to tell which of several placements of a group of stills is right.
+std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,
+                                  const std::vector<Eigen::Vector3d>& poses,
+                                  const StillOnPlanOptions& options = {});
+
 // The still at work_width with the plan's curves at a pose drawn over it (red), and the edges they are
 // compared with (green): what the author sees to judge a placement.
 cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x, double y,
