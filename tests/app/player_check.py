@@ -2,12 +2,15 @@
 """Opens an exported tour in headless Chromium and checks it as a viewer would.
 
 usage: player_check.py PACKAGE_DIR SCREENSHOT_PREFIX [--xss-title TITLE] [--no-hotspots] [--swap-sequence]
+                       [--transition A B C]
 
 Talks to Chromium over --remote-debugging-pipe (DevTools protocol, NUL-separated JSON on fds 3 and 4), so it
 needs nothing but Debian's chromium and python3. Checks: the panorama canvas renders non-blank; a walk key
 moves to another keyframe and the picture changes; clicking a hotspot fires its action; a hotspot title that
 holds markup is shown as text and never executed; with --swap-sequence, the clicked hotspot swaps its region
-for an image sequence that plays, holds its last frame, and swaps back on a second click. Writes SCREENSHOT_PREFIX-start.png and -walked.png.
+for an image sequence that plays, holds its last frame, and swaps back on a second click; with --transition A B
+C (keyframe numbers, B between A and C), the view the walk from A to C draws at B's spot is closer to B's
+own picture than a plain cross-fade of A and C would be. Writes SCREENSHOT_PREFIX-start.png and -walked.png.
 """
 import base64, json, os, subprocess, sys, tempfile, time
 
@@ -220,6 +223,19 @@ def main():
                 if via != 'canvas':
                     fail('the swap hotspot was not hit on the canvas')
                 check_swap_sequence(b, spot, before, prefix)
+
+        if '--transition' in sys.argv:
+            a, m, c = (int(v) for v in sys.argv[sys.argv.index('--transition') + 1:][:3])
+            b.wait_for("window.plenopathPlayer.transitionError(%d, %d, %d) !== null" % (a, m, c), timeout=20,
+                       what='the three keyframes of the transition')
+            err = b.evaluate("window.plenopathPlayer.transitionError(%d, %d, %d)" % (a, m, c))
+            print('transition at keyframe %d: walked %.2f, cross-fade %.2f (mean abs difference, 0-255)' %
+                  (m, err['walked'], err['crossfade']))
+            b.evaluate("window.plenopathPlayer.transitionError(%d, %d, %d, true)" % (a, m, c))
+            b.screenshot(prefix + '-transition.png')
+            if not err['walked'] < 0.85 * err['crossfade']:
+                fail('the walk between stills is no closer to the picture in between than a cross-fade: ' +
+                     json.dumps(err))
 
         # Walk forward: another keyframe, another picture.
         b.evaluate("document.getElementById('view').focus()")

@@ -1,10 +1,16 @@
 // ---------------------------------------------------------------- renderer: WebGL
-// The panorama (two keyframe textures cross-faded on a full-screen triangle) and the hotspot quads. GL state
+// The panorama (two keyframe textures cross-faded on a full-screen triangle) and the hotspot quads. Walking
+// from one keyframe to the next, the viewer is between them: each keyframe is drawn as seen from the
+// viewer's own spot, projected onto a room around it (the floor at the camera height below, a round wall
+// ROOM_RADIUS_M away, the ceiling ROOM_HEIGHT_M up), and the two blend by how far along the viewer is - so
+// stills metres apart are walked through, not jump-cut. GL state
 // is made once: programs, their attribute and uniform locations, the constant sampler units; a hotspot's
 // vertices are uploaded when they change (another keyframe, another corner set), a video frame when the video
 // has moved on, never every frame.
 const TEXTURE_CACHE = 16;      // GPU textures kept (nearest keyframes)
 const FADE_MS = 350;
+const ROOM_RADIUS_M = 3.0;     // the room proxy of the walk between keyframes (at least 1 m beyond the viewer)
+const ROOM_HEIGHT_M = 2.7;
 
 const canvas = $('view');
 const gl = canvas.getContext('webgl', { antialias: true, xrCompatible: true, preserveDrawingBuffer: true });
@@ -13,13 +19,25 @@ const BACKGROUND_VS = 'attribute vec2 a_pos; varying vec2 v_ndc;' +
 const BACKGROUND_FS = 'precision highp float; varying vec2 v_ndc;' +
   'uniform mat3 u_ray; uniform sampler2D u_tex0; uniform sampler2D u_tex1;' +
   'uniform float u_heading0; uniform float u_heading1; uniform float u_mix;' +
+  'uniform vec2 u_off0; uniform vec2 u_off1; uniform float u_radius0; uniform float u_radius1;' +
+  'uniform float u_eye; uniform float u_room;' +
   'const float PI = 3.141592653589793;' +
+  // The point of the room proxy that the viewer, `off` from the keyframe, sees along d (unit), as seen
+  // from the keyframe: the nearest of the round wall and the floor or ceiling.
+  'vec3 proxy(vec2 off, float radius, vec3 d){' +
+  '  if (dot(off, off) < 1e-8) return d;' +
+  '  float a = dot(d.xy, d.xy); float b = dot(off, d.xy); float c = dot(off, off) - radius * radius;' +
+  '  float t = a > 1e-8 ? (-b + sqrt(max(b * b - a * c, 0.0))) / a : 1e6;' +
+  '  if (d.z < -1e-6) t = min(t, -u_eye / d.z);' +
+  '  if (d.z > 1e-6) t = min(t, (u_room - u_eye) / d.z);' +
+  '  return vec3(off, 0.0) + t * d; }' +
   'vec4 equirect(sampler2D t, float heading, vec3 d){' +
   '  float phi = atan(d.y, d.x); float el = atan(d.z, length(d.xy));' +
   '  float u = fract((heading - phi + PI) / (2.0 * PI)); float v = (0.5 * PI - el) / PI;' +
   '  return texture2D(t, vec2(u, v)); }' +
-  'void main(){ vec3 d = u_ray * vec3(v_ndc, 1.0);' +
-  '  gl_FragColor = mix(equirect(u_tex1, u_heading1, d), equirect(u_tex0, u_heading0, d), u_mix); }';
+  'void main(){ vec3 d = normalize(u_ray * vec3(v_ndc, 1.0));' +
+  '  gl_FragColor = mix(equirect(u_tex1, u_heading1, proxy(u_off1, u_radius1, d)),' +
+  '                     equirect(u_tex0, u_heading0, proxy(u_off0, u_radius0, d)), u_mix); }';
 const QUAD_VS = 'attribute vec3 a_world; attribute vec2 a_uv; uniform mat4 u_view_proj; varying vec2 v_uv;' +
   'void main(){ v_uv = a_uv; gl_Position = u_view_proj * vec4(a_world, 1.0); }';
 const QUAD_FS = 'precision mediump float; varying vec2 v_uv; uniform sampler2D u_media; uniform vec4 u_tint;' +
@@ -52,7 +70,8 @@ let background, quadProgram, triangleBuffer, whiteTexture;
 function initGl() {
   if (!gl) throw new Error('This browser has no WebGL: the tour cannot be shown.');
   background = makeProgram(BACKGROUND_VS, BACKGROUND_FS, ['a_pos'],
-    ['u_ray', 'u_tex0', 'u_tex1', 'u_heading0', 'u_heading1', 'u_mix']);
+    ['u_ray', 'u_tex0', 'u_tex1', 'u_heading0', 'u_heading1', 'u_mix', 'u_off0', 'u_off1', 'u_radius0',
+      'u_radius1', 'u_eye', 'u_room']);
   quadProgram = makeProgram(QUAD_VS, QUAD_FS, ['a_world', 'a_uv'], ['u_view_proj', 'u_media', 'u_tint']);
   // Sampler units never change.
   gl.useProgram(background.program);
@@ -127,12 +146,25 @@ function viewMatrices(width, height) {
   return { ray, viewProj };
 }
 
-let fade = { from: -1, start: 0 };
-function drawScene(width, height, ray, viewProj) {
-  const current = keyframes[player.state.keyframe];
-  if (!current) return;
-  const previous = keyframes[fade.from] || current;
-  const t = Math.min(1, (performance.now() - fade.start) / FADE_MS);
+// The keyframes either side of arc length s that have an image, and how far along from the first to the
+// second the viewer is; null when s is at a keyframe or outside them.
+function walkBracket(s) {
+  let before = null, after = null;
+  for (const k of keyframes) {
+    if (!k.image) continue;
+    if (k.s <= s && (!before || k.s > before.s)) before = k;
+    if (k.s >= s && (!after || k.s < after.s)) after = k;
+  }
+  if (!before || !after || before === after || after.s - before.s < 1e-6) return null;
+  return { before, after, along: (s - before.s) / (after.s - before.s) };
+}
+
+// The background: keyframe k0 blended over k1 by `mix`, each seen from the viewer at plan point `at`
+// (null: from the keyframe itself).
+function drawBackground(ray, k0, k1, mix, at) {
+  const off = (k) => at ? [at.x - k.x, at.y - k.y] : [0, 0];
+  const radius = (o) => Math.max(ROOM_RADIUS_M, Math.hypot(o[0], o[1]) + 1.0);
+  const off0 = off(k0), off1 = off(k1);
   const pos = background.attribute.a_pos;
   gl.useProgram(background.program);
   gl.bindBuffer(gl.ARRAY_BUFFER, triangleBuffer);
@@ -140,15 +172,36 @@ function drawScene(width, height, ray, viewProj) {
   gl.vertexAttribPointer(pos, 2, gl.FLOAT, false, 0, 0);
   gl.uniformMatrix3fv(background.uniform.u_ray, false, ray);
   gl.activeTexture(gl.TEXTURE0);
-  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(current));
+  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(k0));
   gl.activeTexture(gl.TEXTURE1);
-  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(previous) || keyframeTexture(current));
-  gl.uniform1f(background.uniform.u_heading0, current.heading);
-  gl.uniform1f(background.uniform.u_heading1, previous.heading);
-  gl.uniform1f(background.uniform.u_mix, t);
+  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(k1) || keyframeTexture(k0));
+  gl.uniform1f(background.uniform.u_heading0, k0.heading);
+  gl.uniform1f(background.uniform.u_heading1, k1.heading);
+  gl.uniform1f(background.uniform.u_mix, mix);
+  gl.uniform2fv(background.uniform.u_off0, off0);
+  gl.uniform2fv(background.uniform.u_off1, off1);
+  gl.uniform1f(background.uniform.u_radius0, radius(off0));
+  gl.uniform1f(background.uniform.u_radius1, radius(off1));
+  gl.uniform1f(background.uniform.u_eye, tour.camera_height_m || 1.6);
+  gl.uniform1f(background.uniform.u_room, Math.max(ROOM_HEIGHT_M, (tour.camera_height_m || 1.6) + 0.3));
   gl.disable(gl.DEPTH_TEST);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
   gl.disableVertexAttribArray(pos);
+}
+
+let fade = { from: -1, start: 0 };
+function drawScene(width, height, ray, viewProj) {
+  const current = keyframes[player.state.keyframe];
+  if (!current) return;
+  // Walking: between the keyframes either side, from where the viewer is.
+  const bracket = player.state.moving ? walkBracket(player.state.s) : null;
+  if (bracket) {
+    drawBackground(ray, bracket.after, bracket.before, bracket.along, frameAtS(player.state.s));
+    return;
+  }
+  const previous = keyframes[fade.from] || current;
+  const t = Math.min(1, (performance.now() - fade.start) / FADE_MS);
+  drawBackground(ray, current, previous, t, null);
   if (t >= 1) drawHotspots(current, viewProj);
 }
 

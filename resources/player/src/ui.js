@@ -285,4 +285,35 @@ function start(data) {
 
 player.walk = walk;
 player.walkToFrame = (frame) => { const f = frameWithIndex(frame); if (f) walkTo(f.s); };
+// Tests: looking from keyframe a toward keyframe c, the view at keyframe b's spot as the walk from a to c
+// draws it (the room proxy) and as a plain cross-fade would, each against b's own picture there: mean
+// absolute difference per channel (0-255). null until the three images are loaded. With `show`, the walked
+// view stays on the canvas (for a screenshot) until the next draw.
+player.transitionError = (a, b, c, show) => {
+  const ka = keyframes[a], kb = keyframes[b], kc = keyframes[c];
+  if (!ka || !kb || !kc || !ka.image || !kb.image || !kc.image) return null;
+  player.state.yaw = Math.atan2(kc.y - ka.y, kc.x - ka.x);
+  player.state.pitch = 0;
+  const w = canvas.width, h = canvas.height;
+  const { ray } = viewMatrices(w, h);
+  const along = (kb.s - ka.s) / (kc.s - ka.s);
+  const grab = () => { const px = new Uint8Array(w * h * 4); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px); return px; };
+  gl.viewport(0, 0, w, h);
+  drawBackground(ray, kb, kb, 1, null);
+  const truth = grab();
+  drawBackground(ray, kc, ka, along, { x: kb.x, y: kb.y });
+  const walked = grab();
+  drawBackground(ray, kc, ka, along, null);
+  const faded = grab();
+  const mad = (p) => {
+    let sum = 0;
+    for (let i = 0; i < p.length; i += 4)
+      sum += Math.abs(p[i] - truth[i]) + Math.abs(p[i + 1] - truth[i + 1]) + Math.abs(p[i + 2] - truth[i + 2]);
+    return sum / (p.length / 4 * 3);
+  };
+  const out = { walked: mad(walked), crossfade: mad(faded), along };
+  if (show) drawBackground(ray, kc, ka, along, { x: kb.x, y: kb.y });
+  else requestDraw();
+  return out;
+};
 player.ready = loadTour().then(start).then(() => true).catch((e) => { showError(e.message); return false; });

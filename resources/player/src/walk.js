@@ -78,7 +78,8 @@ function stepAnimation() {
   const t = Math.min(1, (performance.now() - animation.start) / animation.duration);
   const ease = t < 0.5 ? 2 * t * t : 1 - 2 * (1 - t) * (1 - t);
   player.state.s = animation.from + (animation.to - animation.from) * ease;
-  if (t >= 1) { animation = null; player.state.moving = false; }
+  // Arrived: the walk's own blend ends on this keyframe, so no cross-fade follows it.
+  if (t >= 1) { animation = null; player.state.moving = false; fade.start = 0; }
   const i = nearestKeyframe(player.state.s, true);
   if (i >= 0) setKeyframe(i);
   checkProximity();

@@ -561,5 +561,47 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
+// Stills metres apart are walked through, not jump-cut: three tripod stills 1.5 m apart in a line across
+// the open office, at unrelated headings, all keyframes. Looking from the first toward the last, the view the
+// walk from the first to the last draws at the middle still's spot must be closer to the middle still's own
+// picture (the renderer's truth there) than a plain cross-fade of the two.
+TEST(TourPlayer, WalksBetweenSparseStillsThroughTheRoom) {
+  const fs::path work = fs::path(PLENOPATH_BINARY_DIR) / "player_check_stills";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  Project p;
+  p.plan = make_office_sample_plan();
+  p.tour.title = "Stills";
+  CameraPath stills;
+  const double headings[] = {0.3, 2.0, -1.0};
+  for (int i = 0; i < 3; ++i) {
+    PathFrame f;
+    f.index = i;
+    f.x = 2.4 + 1.5 * i;
+    f.y = 10.0;
+    f.heading = headings[i];
+    stills.frames.push_back(f);
+  }
+  const SyntheticScene scene = build_synthetic_scene(p.plan);
+  RenderOptions render;
+  render.width = 1024;
+  render.height = 512;
+  render.depth = false;
+  write_rendered_capture(work / "capture", scene, render, &stills, &p);
+  p.capture.stills = true;
+  p.keyframes.indices = {0, 1, 2};
+  p.keyframes.rank = {0, 2, 1};
+  p.visibility.cells = {{0, 2, 0.0, 0.4, 0.4, 20.0, 21.0}};
+  TourExportOptions options;
+  options.output = (work / "tour").string();
+  options.max_size = 1024;
+  options.preview_size = 512;
+  export_tour(p, options);
+  const std::string cmd = "/usr/bin/python3 '" + std::string(PLENOPATH_SOURCE_DIR) +
+                          "/tests/app/player_check.py' '" + options.output + "' '" +
+                          (work / "player").string() + "' --no-hotspots --transition 0 1 2";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+}
+
 }  // namespace
 }  // namespace plenopath
