@@ -142,7 +142,11 @@ int run(const Options& o, CLI::App* sub) {
 
   SubProgress sampling_progress(progress, 0.6, 0.9, "placing keyframes");
   inputs.progress = &sampling_progress;
-  const Keyframes keyframes = sample_keyframes(inputs, o.parameters, o.pinned);
+  // Still panoramas: every still is a keyframe (nothing between them to leave out).
+  const bool stills = from_project && project.capture.stills;
+  if (stills) std::cerr << "sample: the capture is still panoramas: every still is a keyframe\n";
+  const Keyframes keyframes =
+      stills ? every_frame_a_keyframe(path) : sample_keyframes(inputs, o.parameters, o.pinned);
 
   SamplingLoss loss;
   const SamplingStatistics stats = sampling_statistics(path, keyframes);

@@ -11,6 +11,7 @@
 #include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/sampling/cg_capture.h"
+#include "processing/sampling/keyframe_sampler.h"
 #include "processing/stills/still_on_plan.h"
 #include "processing/stills/stills_tracking.h"
 #include "processing/visibility/visibility.h"
@@ -166,6 +167,10 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
     project.path = std::move(result.path);
     project.path_points = std::move(result.tracked_points);
     project.visibility = {};  // cells belong to the old path
+    if (choice.stills) {      // every still is a keyframe
+      project.keyframes = every_frame_a_keyframe(project.path);
+      changed |= widgets::kKeyframesChanged;
+    }
     if (!project.plan.empty()) {
       std::string summary;
       PlacementChoices choices;

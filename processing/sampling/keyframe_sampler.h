@@ -35,4 +35,8 @@ struct SamplingInputs {
 Keyframes sample_keyframes(const SamplingInputs& inputs, const SamplingParameters& parameters,
                            const std::vector<int>& pinned = {});
 
+// Still panoramas (Capture::stills): every still is a keyframe, and pinned, so that no later sampling drops
+// one; the progressive rank halves the spacing level by level (first, last, middle, quarters, ...).
+Keyframes every_frame_a_keyframe(const CameraPath& path);
+
 }  // namespace plenopath

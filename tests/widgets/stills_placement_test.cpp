@@ -14,6 +14,7 @@
 #include <random>
 
 #include "app/studio/studio_tasks.h"
+#include "processing/export/tour_export.h"
 #include "rig/synthetic_camera.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
@@ -93,6 +94,9 @@ TEST(StillsInTheStudio, ImportTrackAndPlaceTheUnconnectedStillWithTwoClicks) {
   ASSERT_NE(lab, nullptr);
   ASSERT_FALSE(tracked.piece_placed(lab->piece)) << "the lab still connects to nothing: it stays unplaced";
   EXPECT_NE(outcome->summary.find("6 of 7 connected"), std::string::npos) << outcome->summary;
+  // Every still is a keyframe, pinned.
+  EXPECT_EQ(s.window.document().project().keyframes.indices, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(s.window.document().project().keyframes.pinned.size(), 7u);
   // The connected stills were placed on the plan by registration, with no click.
   for (const PathFrame& f : tracked.frames) {
     if (f.index == 4) continue;
@@ -142,6 +146,14 @@ TEST(StillsInTheStudio, ImportTrackAndPlaceTheUnconnectedStillWithTwoClicks) {
   EXPECT_LT(heading_error_deg(lab_hinted->heading, stills.truth[4].heading), 1.0);
   EXPECT_FALSE(map->is_picking_point());
   EXPECT_EQ(s.window.document().undo_stack()->count(), undo_before + 2);
+
+  // The tour exports with every still a keyframe.
+  TourExportOptions export_options;
+  export_options.output = (stills.path / "tour").string();
+  export_options.max_size = 512;
+  export_options.preview_size = 256;
+  const TourExportReport exported = export_tour(s.window.document().project(), export_options);
+  EXPECT_EQ(exported.keyframes, 7);
 
   // Undo twice: the still is unplaced again, where tracking left it.
   s.window.document().undo_stack()->undo();

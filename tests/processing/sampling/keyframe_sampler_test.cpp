@@ -306,5 +306,23 @@ TEST(KeyframeSampler, UniformMatchesTheBaseline) {
   EXPECT_EQ(order[2], 50);
 }
 
+// Still panoramas: every still a keyframe, pinned, ranked coarse to fine (worked by hand for five stills:
+// the ends 0 and 4 first, then the middle 2, then 1 and 3).
+TEST(EveryFrameAKeyframe, StillsAreAllKeptAndRankedCoarseToFine) {
+  CameraPath path;
+  for (int i : {10, 11, 12, 13, 14}) {
+    PathFrame f;
+    f.index = i;
+    f.x = i;
+    path.frames.push_back(f);
+  }
+  const Keyframes k = every_frame_a_keyframe(path);
+  EXPECT_EQ(k.indices, (std::vector<int>{10, 11, 12, 13, 14}));
+  EXPECT_EQ(k.pinned, k.indices);
+  EXPECT_EQ(k.rank, (std::vector<int>{0, 3, 2, 4, 1}));
+  EXPECT_EQ(k.progressive_order(), (std::vector<int>{10, 14, 12, 11, 13}));
+  EXPECT_TRUE(every_frame_a_keyframe(CameraPath{}).empty());
+}
+
 }  // namespace
 }  // namespace plenopath
