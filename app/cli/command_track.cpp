@@ -39,6 +39,7 @@
 #include "processing/registration/registration.h"
 #include "processing/stills/candidate_fit.h"
 #include "processing/stills/stills.h"
+#include "processing/stills/stills_along_pairs.h"
 #include "processing/stills/stills_detection.h"
 #include "processing/stills/stills_tracking.h"
 
@@ -312,6 +313,7 @@ Command add_track_command(CLI::App& parent) {
         }
         EgomotionResult r;
         nlohmann::json stills_summary;
+        std::vector<StillsPair> stills_pairs;  // every verified pair, for placing stills along them
         if (as_stills) {
           StillsOptions so;
           const bool height_given = options->camera_height > 0;
@@ -327,6 +329,7 @@ Command add_track_command(CLI::App& parent) {
               n, [&](int i) { return source->read(i); }, so, progress);
           progress.finish();
           r = tracker_result_from_stills(s);
+          stills_pairs = s.pairs;
           stills_summary = stills_to_json(s, choice.detected ? &choice.detection : nullptr,
                                           so.camera_height_m, height_given);
           stills_summary["capture_order"] = stills_order;
@@ -371,23 +374,6 @@ Command add_track_command(CLI::App& parent) {
           const bool some_placed = std::any_of(reg.pieces.begin(), reg.pieces.end(),
                                                [](const PieceRegistration& p) { return p.ok; });
           if (!as_stills || !some_placed) require_registered(reg, options->plan);
-          if (as_stills) {
-            nlohmann::json unplaced = nlohmann::json::array();
-            for (const PieceRegistration& p : reg.pieces) {
-              if (p.ok) continue;
-              const CameraPath piece = r.path.piece_path(p.piece);
-              for (const PathFrame& f : piece.frames)
-                unplaced.push_back(f.file.empty() ? std::to_string(f.index) : f.file);
-            }
-            registration["unplaced_stills"] = unplaced;
-            if (!options->quiet && !unplaced.empty()) {
-              std::cerr << "track: stills: " << unplaced.size()
-                        << " still(s) could not be placed on the plan by themselves:";
-              for (const auto& u : unplaced) std::cerr << " " << u.get<std::string>();
-              std::cerr << "\ntrack: place each with `plenopath place-still --plan " << options->plan
-                        << " --image STILL --at X Y` (roughly where it was shot)\n";
-            }
-          }
           r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
           if (!options->no_refine) {
             PlanRefinementOptions refine_options;
@@ -399,6 +385,40 @@ Command add_track_command(CLI::App& parent) {
             refine_progress.finish();
             registration["plan_refinement"] = plan_refinement_to_json(refinement);
             if (!options->quiet) print_plan_refinement(std::cerr, refinement);
+          }
+          if (as_stills) {
+            // Stills with a pair to a placed one but no length: along the pair's direction, the plan
+            // saying how far.
+            PairPlacementOptions pair_options;
+            pair_options.fit.camera_height_m = options->camera_height;
+            PairPlacementReport pair_report;
+            ConsoleProgress pair_progress("track: stills along their pairs", options->quiet);
+            r.path = place_stills_along_pairs(
+                r.path, stills_pairs, [&](int i) { return source->read(i); }, plan, pair_options,
+                &pair_report, pair_progress);
+            pair_progress.finish();
+            nlohmann::json along = nlohmann::json::array();
+            for (const PairPlacement& q : pair_report.placed)
+              along.push_back({{"still", q.frame},
+                               {"from", q.from_frame},
+                               {"fit_px", q.pose.score_px},
+                               {"runner_up_fit_px", q.runner_up_fit_px}});
+            registration["placed_along_pairs"] = along;
+            if (!options->quiet && !pair_report.placed.empty())
+              std::cerr << "track: stills: " << pair_report.placed.size()
+                        << " still(s) placed along their pairs, the plan fixing the distance\n";
+            nlohmann::json unplaced = nlohmann::json::array();
+            for (const PathFrame& f : r.path.frames)
+              if (!r.path.piece_placed(f.piece))
+                unplaced.push_back(f.file.empty() ? std::to_string(f.index) : f.file);
+            registration["unplaced_stills"] = unplaced;
+            if (!options->quiet && !unplaced.empty()) {
+              std::cerr << "track: stills: " << unplaced.size()
+                        << " still(s) could not be placed on the plan by themselves:";
+              for (const auto& u : unplaced) std::cerr << " " << u.get<std::string>();
+              std::cerr << "\ntrack: place each with `plenopath place-still --plan " << options->plan
+                        << " --image STILL --at X Y` (roughly where it was shot)\n";
+            }
           }
         }
         AnchorRefinementReport anchor_report;

@@ -13,6 +13,7 @@
 #include "processing/sampling/cg_capture.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/stills/still_on_plan.h"
+#include "processing/stills/stills_along_pairs.h"
 #include "processing/stills/stills_tracking.h"
 #include "processing/visibility/visibility.h"
 #include "widgets/anchor_commands.h"
@@ -133,12 +134,14 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
     SubProgress tracking_progress(progress, 0.0, place ? 0.9 : 1.0);
     EgomotionResult result;
     int unconnected = 0;
+    std::vector<StillsPair> pairs;  // stills: every verified pair, to place stills along them on the plan
     if (choice.stills) {
       StillsOptions options;
       if (project.capture.camera_height_m > 0) options.camera_height_m = project.capture.camera_height_m;
       options.check();
       const StillsResult stills = solve_stills(n, read, options, tracking_progress);
       unconnected = static_cast<int>(stills.unconnected.size());
+      pairs = stills.pairs;
       result = tracker_result_from_stills(stills);
       if (mode.empty()) mode = "solved as still panoramas";
       mode += ": " + std::to_string(n - unconnected) + " of " + std::to_string(n) + " connected";
@@ -180,6 +183,16 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
         SubProgress placing(progress, 0.9, 1.0, "placing the path on the plan");
         try {
           choices = place_project_on_plan(project, placing, false, &summary);
+          if (choice.stills) {  // the stills with a pair but no length: along it, the plan saying how far
+            PairPlacementOptions pair_options;
+            pair_options.fit.camera_height_m = project.capture.camera_height_m;
+            PairPlacementReport along;
+            SubProgress along_progress(progress, 0.97, 1.0, "stills along their pairs");
+            project.path = place_stills_along_pairs(project.path, pairs, read, project.plan, pair_options,
+                                                    &along, along_progress);
+            if (!along.placed.empty())
+              summary += "; " + std::to_string(along.placed.size()) + " still(s) placed along their pairs";
+          }
         } catch (const Cancelled&) {
           throw;
         } catch (const Error& e) {  // the tracked path is still worth having, unplaced

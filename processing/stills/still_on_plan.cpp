@@ -190,8 +190,13 @@ void StillOnPlanOptions::check() const {
   if (!(heading_hint_spread_deg > 0)) throw Error("heading_hint_spread_deg must be > 0");
 }
 
-StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, const Eigen::Vector2d& click,
-                                   const StillOnPlanOptions& options, Progress& progress) {
+namespace {
+
+// The search itself: every spot (those clear of the walls), every heading allowed, coarse, then the best few
+// refined. `click` is only for the summary's "m from the click".
+StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
+                                    const std::vector<Eigen::Vector2d>& spots, const Eigen::Vector2d& click,
+                                    const StillOnPlanOptions& options, Progress& progress) {
   options.check();
   const auto started = std::chrono::steady_clock::now();
   if (still.empty()) throw Error("the still is empty");
@@ -223,16 +228,10 @@ StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, 
     headings.push_back(j);
   }
 
-  // Coarse: every grid position clear of the walls, every heading.
+  // Coarse: every spot clear of the walls, every heading.
   std::vector<Eigen::Vector2d> positions;
-  const int reach = static_cast<int>(std::floor(options.search_radius_m / options.coarse_step_m + 1e-9));
-  for (int i = -reach; i <= reach; ++i)
-    for (int k = -reach; k <= reach; ++k) {
-      const Eigen::Vector2d p = click + options.coarse_step_m * Eigen::Vector2d(i, k);
-      if ((p - click).norm() > options.search_radius_m + 1e-9) continue;
-      if (distance_to_walls(walls, p) < options.min_wall_distance_m) continue;
-      positions.push_back(p);
-    }
+  for (const Eigen::Vector2d& p : spots)
+    if (distance_to_walls(walls, p) >= options.min_wall_distance_m) positions.push_back(p);
   if (positions.empty())
     throw Error("no spot within " + std::to_string(options.search_radius_m) +
                 " m of the click is clear of the walls: click inside the room");
@@ -309,6 +308,28 @@ StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, 
   out.summary = text;
   progress.report(1.0, out.summary);
   return out;
+}
+
+}  // namespace
+
+StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, const Eigen::Vector2d& click,
+                                   const StillOnPlanOptions& options, Progress& progress) {
+  options.check();
+  std::vector<Eigen::Vector2d> spots;
+  const int reach = static_cast<int>(std::floor(options.search_radius_m / options.coarse_step_m + 1e-9));
+  for (int i = -reach; i <= reach; ++i)
+    for (int k = -reach; k <= reach; ++k) {
+      const Eigen::Vector2d p = click + options.coarse_step_m * Eigen::Vector2d(i, k);
+      if ((p - click).norm() <= options.search_radius_m + 1e-9) spots.push_back(p);
+    }
+  return place_still_at_spots(still, plan, spots, click, options, progress);
+}
+
+StillPlacement place_still_among(const cv::Mat& still, const FloorPlan& plan,
+                                 const std::vector<Eigen::Vector2d>& spots, const StillOnPlanOptions& options,
+                                 Progress& progress) {
+  if (spots.empty()) throw Error("no spots to place the still among");
+  return place_still_at_spots(still, plan, spots, spots.front(), options, progress);
 }
 
 std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,

@@ -61,6 +61,13 @@ StillPlacement place_still_on_plan(const cv::Mat& still, const FloorPlan& plan, 
                                    const StillOnPlanOptions& options = {},
                                    Progress& progress = null_progress());
 
+// The same search among given spots (each refined on the fine grid around it), e.g. along the direction in
+// which a still connected by a pair lies from a placed one. The summary's distance is from spots.front().
+StillPlacement place_still_among(const cv::Mat& still, const FloorPlan& plan,
+                                 const std::vector<Eigen::Vector2d>& spots,
+                                 const StillOnPlanOptions& options = {},
+                                 Progress& progress = null_progress());
+
 // The fit (score_px as above, lower is better) of the still at each of `poses` (x, y in plan metres, heading
 // in degrees), with no search: to tell which of several placements of a group of stills is right.
 std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,

@@ -12,7 +12,8 @@ For each stills scene of corpus.py (those with "stills" instead of a walk): rend
     see): position error per still (m), heading error per still (deg), and the similarity's scale - 1 (the
     metric scale from the camera height);
   - with --plan (default on): the same run with `--plan plan.dxf`, whose placed stills are compared to the
-    truth as they are, in plan coordinates (issue 20's "after registration on the plan");
+    truth as they are, in plan coordinates (issue 20's "after registration on the plan"), and the share of
+    stills placed there (registration, then stills placed along their pairs with the plan fixing distances);
   - assisted: every still that run left off the plan placed by `plenopath place-still` from a simulated
     click CLICK_OFF_M from the truth (the author's one click), compared to the truth in plan coordinates
     (issue 20's three-click target, 10 cm / 1 deg).
@@ -168,6 +169,7 @@ def bench_scene(scene, args):
             out["on_plan"] = {"error": perror, "seconds": pseconds}
         else:
             out["on_plan"] = score(placed_frames(ppath), truth_by_index, False)
+            out["on_plan"]["placed_fraction"] = round(len(placed_frames(ppath)) / n, 3)
             out["on_plan"]["seconds"] = pseconds
             reg = psum.get("registration")
             if isinstance(reg, dict):

@@ -1,0 +1,61 @@
+#pragma once
+// Stills the view graph could not place, placed on the plan through the pairs they do have (issue 20). A
+// pair of stills that matched well enough to give its turn and its direction but not its length (a
+// corridor's plain walls, a floor too repetitive to measure) cannot join a group: nothing says how far
+// apart the two are. The plan can: from a placed still, the other lies somewhere along the pair's
+// direction, turned by the pair's turn, and what it sees of the walls (still_on_plan.h) says where along
+// it. Repeated until no more stills can be placed, so a corridor of such pairs is placed one by one.
+#include <functional>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "model/camera_path.h"
+#include "model/floor_plan.h"
+#include "processing/stills/still_on_plan.h"
+#include "processing/stills/stills.h"
+#include "processing/util/progress.h"
+
+namespace plenopath {
+
+struct PairPlacementOptions {
+  StillOnPlanOptions fit;       // camera height, resolution, truncation; the fine grid around each spot
+  double min_distance_m = 0.5;  // how far along the pair's direction the other still is looked for
+  double max_distance_m = 10.0;
+  double step_m = 0.1;
+  double lateral_m = 0.1;           // and this far either side (the direction's own error)
+  double heading_spread_deg = 3.0;  // the heading within this of the pair's turn
+  int min_inliers = 30;             // a pair's verified matches
+  double max_fit_px = 2.5;          // a worse fit is not taken (the still is left for the author)
+  // Along a corridor the walls look alike every few metres: the best spot farther than ambiguity_gap_m from
+  // the chosen one must fit this much worse, or the still is left for the author.
+  double ambiguity_gap_m = 1.0;
+  double min_ambiguity_ratio = 1.15;
+  // Only spots the placed still has a clear line to (the tripod was carried from one to the other, through
+  // a door if need be): a pair whose direction is wrong would otherwise find rooms beyond a wall.
+  bool require_line_of_sight = true;
+  void check() const;  // throws Error naming the bad field
+};
+
+struct PairPlacement {
+  int frame = -1;       // the still placed (capture index)
+  int from_frame = -1;  // through its pair with this placed still
+  StillPlacement pose;
+  double runner_up_fit_px = 0.0;  // the best fit farther than ambiguity_gap_m along the pair
+};
+
+struct PairPlacementReport {
+  std::vector<PairPlacement> placed;
+  std::vector<int> rejected;  // stills tried whose best fit was too poor or ambiguous
+};
+
+// `path` as the stills pipeline and registration left it (placed pieces on the plan); pairs from
+// StillsResult::pairs (a, b are capture indices). Only unplaced pieces of one still, or of several with a
+// metric scale, are moved (rigidly, path_with_still_placed). read(i) gives still i.
+CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<StillsPair>& pairs,
+                                    const std::function<cv::Mat(int)>& read, const FloorPlan& plan,
+                                    const PairPlacementOptions& options = {},
+                                    PairPlacementReport* report = nullptr,
+                                    Progress& progress = null_progress());
+
+}  // namespace plenopath
