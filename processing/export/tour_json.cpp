@@ -1,12 +1,15 @@
 #include "processing/export/tour_json.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <optional>
 
 #include "model/error.h"
 #include "model/hotspot_io.h"
 #include "model/json_reader.h"
 #include "processing/export/tour_export.h"
+#include "processing/walk/walk_route.h"
 
 namespace plenopath {
 namespace {
@@ -27,10 +30,26 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
   const CameraPath& path = project.path;
   const std::vector<double> s = path.arc_lengths();
 
+  // Stills metres apart: between two whose straight line crosses a wall, the walkable route (through the
+  // door) as waypoints of index -1, their s spread over the two stills' own, so every s stays as it was.
+  std::optional<WalkRouter> router;
+  if (project.capture.stills && !project.plan.occluder_segments().empty()) router.emplace(project.plan);
   json frames = json::array();
   for (std::size_t i = 0; i < path.frames.size(); ++i) {
     const PathFrame& f = path.frames[i];
     frames.push_back({f.index, f.x, f.y, degrees(f.heading), s[i]});
+    if (!router || i + 1 >= path.frames.size() || path.frames[i + 1].piece != f.piece) continue;
+    const std::vector<Eigen::Vector2d> route = router->route(f.position(), path.frames[i + 1].position());
+    if (route.size() <= 2) continue;
+    double total = 0.0;
+    for (std::size_t k = 1; k < route.size(); ++k) total += (route[k] - route[k - 1]).norm();
+    double along = 0.0;
+    for (std::size_t k = 1; k + 1 < route.size(); ++k) {
+      along += (route[k] - route[k - 1]).norm();
+      const Eigen::Vector2d d = route[k + 1] - route[k];
+      frames.push_back({-1, route[k].x(), route[k].y(), degrees(std::atan2(d.y(), d.x())),
+                        s[i] + (s[i + 1] - s[i]) * along / total});
+    }
   }
 
   std::map<int, std::size_t> position_of_frame;
@@ -150,6 +169,7 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const JsonReader f = frames.at(i);
     if (f.size() < 4) f.fail("expected [index, x, y, heading_deg, s]");
+    if (f.at(0).integer() < 0) continue;  // a waypoint of the walkable route between stills
     PathFrame frame;
     frame.index = f.at(0).integer();
     frame.x = f.at(1).number();

@@ -561,6 +561,57 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
+// Stills in two rooms: the tour's path goes from one to the other along the walkable route, through both
+// doorways (waypoints of index -1), crossing no wall (an orientation test of this file's own); the stills'
+// arc lengths stay those of the project's path, and reading the tour back drops the waypoints.
+TEST(TourExport, StillsInTwoRoomsAreJoinedThroughTheDoors) {
+  const fs::path work = fs::path(PLENOPATH_BINARY_DIR) / "tour_stills_route";
+  fs::remove_all(work);
+  Project p;
+  p.plan = make_office_sample_plan();
+  CameraPath stills;
+  for (auto [x, y] : {std::pair{2.6, 9.4}, {1.0, 1.0}}) {
+    PathFrame f;
+    f.index = static_cast<int>(stills.frames.size());
+    f.x = x;
+    f.y = y;
+    stills.frames.push_back(f);
+  }
+  RenderOptions render;
+  render.width = 256;
+  render.height = 128;
+  render.depth = false;
+  write_rendered_capture(work / "capture", build_synthetic_scene(p.plan), render, &stills, &p);
+  p.capture.stills = true;
+  p.keyframes.indices = {0, 1};
+  p.keyframes.rank = {0, 1};
+  TourExportOptions options;
+  options.output = (work / "tour").string();
+  export_tour(p, options);
+  const std::string file = (fs::path(options.output) / "tour.json").string();
+  const nlohmann::json tour = read_json_file(file);
+  std::vector<Eigen::Vector2d> line;
+  int waypoints = 0;
+  for (const auto& f : tour["path"]["frames"]) {
+    line.emplace_back(f[1].get<double>(), f[2].get<double>());
+    waypoints += f[0].get<int>() == -1;
+  }
+  EXPECT_GE(waypoints, 1);
+  const auto orient = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+  };
+  for (std::size_t k = 1; k < line.size(); ++k)
+    for (const PlanSegment& w : p.plan.occluder_segments())
+      EXPECT_FALSE(orient(line[k - 1], line[k], w.a) * orient(line[k - 1], line[k], w.b) < 0 &&
+                   orient(w.a, w.b, line[k - 1]) * orient(w.a, w.b, line[k]) < 0)
+          << "leg " << k << " crosses a wall";
+  const double straight = (stills.frames[1].position() - stills.frames[0].position()).norm();
+  EXPECT_NEAR(tour["path"]["frames"].back()[4].get<double>(), straight, 1e-9);  // s as the project's path
+  EXPECT_NEAR(tour["path"]["length_m"].get<double>(), straight, 1e-9);
+  const Project back = project_from_tour_json(tour, file);
+  EXPECT_EQ(back.path.size(), 2u);
+}
+
 // Stills metres apart are walked through, not jump-cut: three tripod stills 1.5 m apart in a line across
 // the open office, at unrelated headings, all keyframes. Looking from the first toward the last, the view the
 // walk from the first to the last draws at the middle still's spot must be closer to the middle still's own
