@@ -166,7 +166,11 @@ TEST(StillsInTheStudio, ImportTrackAndPlaceTheUnconnectedStillWithTwoClicks) {
   QTest::keyClick(map, Qt::Key_Escape);
   EXPECT_FALSE(map->is_picking_point());
   EXPECT_FALSE(s.window.tasks().is_running());
-  if (qEnvironmentVariableIsSet("PLENOPATH_TEST_SAVE")) s.window.grab().save("/tmp/stills_studio.png");
+  if (qEnvironmentVariableIsSet("PLENOPATH_TEST_SAVE")) {
+    QTest::qWait(300);
+    map->render_now();
+    s.window.grab().save("/tmp/stills_studio.png");
+  }
 }
 
 }  // namespace

@@ -124,6 +124,23 @@ SCENES = {
         "walk": {"dt": 1.0, "seed": 20},
         "nuisances": {"exposure_per_still": 0.2},
     },
+    "gallery_stills": {
+        "pov": "gallery_stills.pov",
+        "camera_height": 1.6,
+        "size": (2048, 1024),
+        "description": "gallery hall 26 x 16 m as 17 tripod stills 3.5-4 m apart at random headings: along the "
+                       "windows, down the middle aisle between the columns and back along the north wall; "
+                       "walls 8-13 m away, sun patches on a glossy floor; tripod at the nadir, exposure "
+                       "differing from shot to shot (+-20 %), PNG",
+        "stills": {
+            "positions": [(3.0, 2.5), (6.5, 2.5), (10.0, 2.5), (13.5, 2.5), (17.0, 2.5), (20.5, 2.5), (23.5, 2.5),
+                          (24.0, 6.0), (21.0, 8.0), (17.5, 8.0), (14.0, 8.0), (10.5, 8.0), (7.0, 8.0), (3.5, 8.0),
+                          (5.0, 13.5), (8.5, 13.5), (12.0, 13.5)],
+            "seed": 21,
+        },
+        "walk": {"dt": 1.0, "seed": 21},
+        "nuisances": {"exposure_per_still": 0.2},
+    },
     "gap": {
         "pov": "office.pov",
         "camera_height": 1.6,
