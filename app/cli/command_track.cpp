@@ -369,11 +369,10 @@ Command add_track_command(CLI::App& parent) {
           }
           registration = registration_to_json(reg);
           if (!options->quiet) print_registration(std::cerr, reg);
-          // Stills that connected to no other have no points of their own to register by: the others are
-          // placed, and these are named for `place-still` (one click each).
-          const bool some_placed = std::any_of(reg.pieces.begin(), reg.pieces.end(),
-                                               [](const PieceRegistration& p) { return p.ok; });
-          if (!as_stills || !some_placed) require_registered(reg, options->plan);
+          // Stills that registration cannot place (no points of their own, walls too far for their points)
+          // are not an error: the path is written with what is placed, and the rest are named below for
+          // `place-still` (one click each).
+          if (!as_stills) require_registered(reg, options->plan);
           r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
           if (!options->no_refine) {
             PlanRefinementOptions refine_options;
