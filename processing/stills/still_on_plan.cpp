@@ -22,6 +22,16 @@ struct Walls {
   std::vector<Eigen::Vector2d> start, along;  // segment k: start[k] + s * along[k], s in [0, 1]
 };
 
+// The plan's sight-blocking segments; throws Error when it has none.
+Walls walls_of(const FloorPlan& plan) {
+  Walls walls;
+  for (const PlanSegment& s : plan.occluder_segments())
+    if ((s.b - s.a).squaredNorm() > 1e-12) walls.start.push_back(s.a), walls.along.push_back(s.b - s.a);
+  if (walls.start.empty())
+    throw Error("the plan has no sight-blocking segments: mark the walls' layer as blocking sight first");
+  return walls;
+}
+
 // Distance from p along the unit direction to the first wall (kInf when none), and which wall.
 double cast_ray(const Walls& walls, const Eigen::Vector2d& p, const Eigen::Vector2d& dir, int* wall) {
   double best = kInf;
@@ -200,11 +210,7 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
   options.check();
   const auto started = std::chrono::steady_clock::now();
   if (still.empty()) throw Error("the still is empty");
-  Walls walls;
-  for (const PlanSegment& s : plan.occluder_segments())
-    if ((s.b - s.a).squaredNorm() > 1e-12) walls.start.push_back(s.a), walls.along.push_back(s.b - s.a);
-  if (walls.start.empty())
-    throw Error("the plan has no sight-blocking segments: mark the walls' layer as blocking sight first");
+  const Walls walls = walls_of(plan);
 
   const int width = options.work_width;
   const double step = 2.0 * M_PI / width;
@@ -338,11 +344,7 @@ std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,
   options.check();
   if (still.empty()) throw Error("the still is empty");
   const int width = options.work_width;
-  Walls walls;
-  for (const PlanSegment& s : plan.occluder_segments())
-    if ((s.b - s.a).squaredNorm() > 1e-12) walls.start.push_back(s.a), walls.along.push_back(s.b - s.a);
-  if (walls.start.empty())
-    throw Error("the plan has no sight-blocking segments: mark the walls' layer as blocking sight first");
+  const Walls walls = walls_of(plan);
   const cv::Mat map = edge_distance(still, width, options.truncation_px);
   const Scorer scorer{map,
                       width,
@@ -364,11 +366,9 @@ cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x
                            double heading_deg, const StillOnPlanOptions& options) {
   options.check();
   const int width = options.work_width, height = width / 2;
-  Walls walls;
-  for (const PlanSegment& s : plan.occluder_segments())
-    if ((s.b - s.a).squaredNorm() > 1e-12) walls.start.push_back(s.a), walls.along.push_back(s.b - s.a);
+  const Walls walls = walls_of(plan);
   cv::Mat out;
-  cv::resize(still.channels() == 1 ? still : still, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+  cv::resize(still, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
   if (out.channels() == 1) cv::cvtColor(out, out, cv::COLOR_GRAY2BGR);
   const cv::Mat map = edge_distance(still, width, options.truncation_px);
   out.setTo(cv::Scalar(0, 200, 0), map == 0);

@@ -6,27 +6,9 @@
 #include <set>
 
 #include "model/error.h"
+#include "processing/walk/walk_route.h"
 
 namespace plenopath {
-namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// True when the open segment p-q crosses none of the walls.
-bool clear_line(const std::vector<PlanSegment>& walls, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-  const Eigen::Vector2d d = q - p;
-  for (const PlanSegment& w : walls) {
-    const Eigen::Vector2d e = w.b - w.a;
-    const double denom = cross(d, e);
-    if (std::abs(denom) < 1e-12) continue;
-    const Eigen::Vector2d ap = w.a - p;
-    const double t = cross(ap, e) / denom, s = cross(ap, d) / denom;
-    if (t > 1e-9 && t < 1 - 1e-9 && s >= 0 && s <= 1) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 void PairPlacementOptions::check() const {
   fit.check();
@@ -91,7 +73,8 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
       for (double l : {0.0, -options.lateral_m, options.lateral_m}) {
         if (l != 0.0 && options.lateral_m <= 0) continue;
         const Eigen::Vector2d q = known.position() + t * along + l * side;
-        if (!options.require_line_of_sight || clear_line(walls, known.position(), q)) spots.push_back(q);
+        if (!options.require_line_of_sight || !crosses_any_wall(walls, known.position(), q))
+          spots.push_back(q);
       }
     if (spots.empty()) {  // the pair points straight into a wall
       r.rejected.push_back(to);

@@ -56,9 +56,10 @@ Eigen::Vector2d WalkRouter::centre_of(const cv::Point& c) const {
   return origin_ + options_.cell_m * Eigen::Vector2d(c.x, c.y);
 }
 
-bool WalkRouter::crosses_wall(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+bool crosses_any_wall(const std::vector<PlanSegment>& walls, const Eigen::Vector2d& a,
+                      const Eigen::Vector2d& b) {
   const Eigen::Vector2d d = b - a;
-  for (const PlanSegment& w : walls_) {
+  for (const PlanSegment& w : walls) {
     const Eigen::Vector2d e = w.b - w.a;
     const double denom = cross(d, e);
     if (std::abs(denom) < 1e-12) continue;
@@ -67,6 +68,10 @@ bool WalkRouter::crosses_wall(const Eigen::Vector2d& a, const Eigen::Vector2d& b
     if (t > 1e-9 && t < 1 - 1e-9 && s >= 0 && s <= 1) return true;
   }
   return false;
+}
+
+bool WalkRouter::crosses_wall(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+  return crosses_any_wall(walls_, a, b);
 }
 
 std::vector<Eigen::Vector2d> WalkRouter::route(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {

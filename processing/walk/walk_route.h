@@ -12,6 +12,11 @@
 
 namespace plenopath {
 
+// Whether the straight line a-b crosses one of `walls` (touching a wall's end counts; running along one
+// does not).
+bool crosses_any_wall(const std::vector<PlanSegment>& walls, const Eigen::Vector2d& a,
+                      const Eigen::Vector2d& b);
+
 struct WalkRouteOptions {
   double cell_m = 0.05;      // raster resolution
   double clearance_m = 0.3;  // cells nearer a wall than this cost more, the more the nearer
