@@ -366,6 +366,10 @@ Command add_track_command(CLI::App& parent) {
             if (!options->quiet && fit.pieces_reordered > 0)
               std::cerr << "track: stills: " << fit.pieces_reordered
                         << " piece(s) placed by what the stills see rather than by their points\n";
+            if (!options->quiet && fit.pieces_refused > 0)
+              std::cerr
+                  << "track: stills: " << fit.pieces_refused
+                  << " piece(s) left off the plan: their stills do not fit where their points put them\n";
           }
           registration = registration_to_json(reg);
           if (!options->quiet) print_registration(std::cerr, reg);
@@ -374,6 +378,11 @@ Command add_track_command(CLI::App& parent) {
           // `place-still` (one click each).
           if (!as_stills) require_registered(reg, options->plan);
           r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
+          // A group of stills left where the stills pipeline put it is not on the plan: unplaced.
+          if (as_stills)
+            for (const PieceRegistration& p : reg.pieces)
+              if (!p.ok && p.piece < static_cast<int>(r.path.pieces.size()))
+                r.path.pieces[static_cast<std::size_t>(p.piece)].placed = false;
           if (!options->no_refine) {
             PlanRefinementOptions refine_options;
             refine_options.registration = ro;

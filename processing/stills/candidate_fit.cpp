@@ -11,7 +11,8 @@ namespace plenopath {
 void CandidateFitOptions::check() const {
   fit.check();
   if (max_stills_per_piece < 1) throw Error("CandidateFitOptions.max_stills_per_piece must be >= 1");
-  if (max_candidates < 2) throw Error("CandidateFitOptions.max_candidates must be >= 2");
+  if (max_candidates < 1) throw Error("CandidateFitOptions.max_candidates must be >= 1");
+  if (!(max_fit_px > 0)) throw Error("CandidateFitOptions.max_fit_px must be > 0");
 }
 
 CandidateFitReport rerank_by_still_fit(RegistrationResult* result, const CameraPath& path,
@@ -22,7 +23,7 @@ CandidateFitReport rerank_by_still_fit(RegistrationResult* result, const CameraP
   report.fits_px.resize(result->pieces.size());
   for (std::size_t k = 0; k < result->pieces.size(); ++k) {
     PieceRegistration& piece = result->pieces[k];
-    if (!piece.ok || piece.candidates.size() < 2) continue;
+    if (!piece.ok || piece.candidates.empty()) continue;
     progress.checkpoint(static_cast<double>(k) / result->pieces.size(),
                         "checking piece " + std::to_string(k + 1) + "'s placements against its stills");
     std::vector<const PathFrame*> frames;
@@ -46,6 +47,18 @@ CandidateFitReport rerank_by_still_fit(RegistrationResult* result, const CameraP
     }
     report.fits_px[k] = fit;
     ++report.pieces_scored;
+    const double best_fit = *std::min_element(fit.begin(), fit.end());
+    if (!(best_fit <= options.max_fit_px)) {
+      char why[200];
+      std::snprintf(
+          why, sizeof why,
+          "its points fit the plan, but what its stills see does not (best fit %.2f px, at most %.2f)",
+          best_fit, options.max_fit_px);
+      piece.ok = false;
+      piece.message = why;
+      ++report.pieces_refused;
+      continue;
+    }
     std::vector<int> order(static_cast<std::size_t>(scored));
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return fit[a] < fit[b]; });

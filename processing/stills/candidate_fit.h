@@ -22,18 +22,22 @@ struct CandidateFitOptions {
   StillOnPlanOptions fit;        // camera height, resolution, truncation
   int max_stills_per_piece = 6;  // spread over the piece
   int max_candidates = 5;        // scored per piece
+  // The best candidate's fit must be within this, or the piece is not placed (its points found a place
+  // its stills do not agree with).
+  double max_fit_px = 2.5;
   void check() const;
 };
 
 struct CandidateFitReport {
   int pieces_scored = 0;
   int pieces_reordered = 0;                  // a candidate other than registration's first won
+  int pieces_refused = 0;                    // no candidate fits within max_fit_px: not placed
   std::vector<std::vector<double>> fits_px;  // per piece, per candidate scored (mean over its stills)
 };
 
 // Re-orders each ok piece's candidates of `result` (registration of `path`, as the stills pipeline gives it)
-// by the stills' fit; read(frame_index) gives the still of a frame (its capture index). Pieces with one
-// candidate are left alone. Cancel through progress.
+// by the stills' fit; read(frame_index) gives the still of a frame (its capture index). A piece whose best
+// candidate fits worse than max_fit_px is marked not ok, with the reason. Cancel through progress.
 CandidateFitReport rerank_by_still_fit(RegistrationResult* result, const CameraPath& path,
                                        const std::function<cv::Mat(int)>& read, const FloorPlan& plan,
                                        const CandidateFitOptions& options = {},

@@ -74,11 +74,20 @@ TEST(CandidateFit, TheStillsPickTheTruePlacementOverRepeatedOnes) {
   const CandidateFitReport again = rerank_by_still_fit(
       &result, path, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan);
   EXPECT_EQ(again.pieces_reordered, 0);
+
+  // Where no candidate fits well enough, the piece is not placed, and says why.
+  CandidateFitOptions strict;
+  strict.max_fit_px = 0.5 * report.fits_px[0][0];
+  const CandidateFitReport refused = rerank_by_still_fit(
+      &result, path, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, strict);
+  EXPECT_EQ(refused.pieces_refused, 1);
+  EXPECT_FALSE(result.pieces[0].ok);
+  EXPECT_NE(result.pieces[0].message.find("what its stills see does not"), std::string::npos);
 }
 
 TEST(CandidateFit, BadOptionsAreRefused) {
   CandidateFitOptions options;
-  options.max_candidates = 1;
+  options.max_candidates = 0;
   EXPECT_THROW(options.check(), Error);
 }
 
