@@ -22,6 +22,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/capture/povray_atmosphere.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;
@@ -117,9 +118,11 @@ namespace {
 // The frames of one chunk, rendered by one POV-Ray process per pass in animation mode (frame_number indexes
 // the chunk's camera poses): a POV-Ray process idles about a quarter of a second before and after each frame
 // whatever its size, which dominates small frames.
-std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& scene_file,
-                                      const std::string& povray, const std::vector<PathFrame>& poses,
-                                      const PovrayOptions& o, const fs::path& work, Progress& progress) {
+// `depth_scene`: the scene's copy without its own atmosphere (povray_atmosphere.h), for the depth passes.
+std::vector<PovrayFrame> render_chunk(const fs::path& scene, const fs::path& depth_scene,
+                                      const std::string& scene_file, const std::string& povray,
+                                      const std::vector<PathFrame>& poses, const PovrayOptions& o,
+                                      const fs::path& work, Progress& progress) {
   const int height = o.width / 2;
   const double u = o.units_per_metre;
   const double fog_m = o.depth_fog_m > 0 ? o.depth_fog_m : 8.0;
@@ -152,13 +155,15 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& 
                              index + "]\n  direction Plenopath_Direction[" + index +
                              "]\n  right Plenopath_Right[" + index + "]\n  up " +
                              (o.z_up ? "<0, 0, -1>" : "<0, 1, 0>") + "\n}\n";
+  // POV-Ray runs in the folder of the scene it includes (the author's, or the depth passes' copy, which then
+  // reads the other copied files first) with the author's folder as its library path.
   auto pass = [&](const std::string& name, const std::string& extra_sdl,
-                  const std::vector<std::string>& flags) {
+                  const std::vector<std::string>& flags, const fs::path& included) {
     const fs::path wrapper = work / (name + ".pov");
     {
       std::ofstream out(wrapper);
       out << "// Written by Plenopath Studio: the author's scene, seen by the studio's spherical camera.\n"
-          << "#include \"" << scene.string() << "\"\n"
+          << "#include \"" << included.string() << "\"\n"
           << camera << extra_sdl;
       if (!out) throw Error("POV-Ray: cannot write " + wrapper.string());
     }
@@ -186,7 +191,7 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& 
     }
     argv.insert(argv.end(), flags.begin(), flags.end());
     const int status =
-        run_process(argv, scene.parent_path().string(), log.string(), o.timeout_s * count, progress);
+        run_process(argv, included.parent_path().string(), log.string(), o.timeout_s * count, progress);
     std::vector<cv::Mat> images;
     for (int i = 0; i < count; ++i) {
       const fs::path image = image_of(i);
@@ -206,7 +211,7 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& 
   if (o.colour) {
     std::vector<std::string> colour_flags = {"+FN8", "+Q" + std::to_string(o.quality)};
     colour_flags.push_back(o.antialias ? "+A0.3" : "-A");
-    std::vector<cv::Mat> colour = pass("colour", "", colour_flags);
+    std::vector<cv::Mat> colour = pass("colour", "", colour_flags, scene);
     for (int i = 0; i < count; ++i) {
       cv::Mat& rgb = colour[static_cast<std::size_t>(i)];
       if (rgb.channels() == 4) cv::cvtColor(rgb, rgb, cv::COLOR_BGRA2BGR);
@@ -223,8 +228,8 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const std::string& 
     return "global_settings { max_trace_level 1 }\nfog { fog_type 1 distance " + std::to_string(fog_units) +
            " color rgb " + std::to_string(white) + " }\n";
   };
-  const std::vector<cv::Mat> blacks = pass("depth_black", fog(0), depth_flags);
-  const std::vector<cv::Mat> whites = pass("depth_white", fog(1), depth_flags);
+  const std::vector<cv::Mat> blacks = pass("depth_black", fog(0), depth_flags, depth_scene);
+  const std::vector<cv::Mat> whites = pass("depth_white", fog(1), depth_flags, depth_scene);
   for (int i = 0; i < count; ++i) {
     const cv::Mat &black = blacks[static_cast<std::size_t>(i)], &white = whites[static_cast<std::size_t>(i)];
     if (black.size() != white.size() || black.depth() != CV_16U || white.depth() != CV_16U)
@@ -280,6 +285,11 @@ void render_povray_frames(const std::string& scene_file, const std::vector<PathF
   // Chunks of at most frames_per_process, spread over the processes so that a short path still uses them.
   const int per_chunk =
       std::max(1, std::min(o.frames_per_process, (total + processes - 1) / std::max(1, processes)));
+  // The depth passes read the scene without the author's fogs, media and radiosity.
+  fs::path depth_scene = scene;
+  if (o.depth)
+    depth_scene = copy_scene_without_atmosphere(scene.string(), (fs::path(work_dir) / "depth-scene").string())
+                      .scene_file;
   int done = 0;
   for (int wave_begin = 0; wave_begin < total; wave_begin += per_chunk * processes) {
     const int wave_end = std::min(total, wave_begin + per_chunk * processes);
@@ -295,7 +305,7 @@ void render_povray_frames(const std::string& scene_file, const std::vector<PathF
           fs::create_directories(work);
           const std::vector<PathFrame> chunk(poses.begin() + first, poses.begin() + last);
           rendered[static_cast<std::size_t>(c)] =
-              render_chunk(scene, scene_file, povray, chunk, o, work, progress);
+              render_chunk(scene, depth_scene, scene_file, povray, chunk, o, work, progress);
         } catch (...) {
           failed[static_cast<std::size_t>(c)] = std::current_exception();
         }
@@ -310,6 +320,7 @@ void render_povray_frames(const std::string& scene_file, const std::vector<PathF
     progress.checkpoint(double(done) / total);
   }
   for (int c = 0; c < processes; ++c) fs::remove_all(fs::path(work_dir) / ("chunk" + std::to_string(c)));
+  fs::remove_all(fs::path(work_dir) / "depth-scene");
 }
 
 PovrayFrame render_povray_frame(const std::string& scene_file, const PathFrame& pose,

@@ -10,9 +10,10 @@
 // fog), t = exp(-d / D): their difference is 1 - t whatever C, its lights and shadows are, so
 // d = -D ln(1 - (white - black)). The passes are rendered linear (File_Gamma 1), 16 bits, without
 // antialiasing, with max_trace_level 1 (no reflected or refracted rays, which would mix in other distances).
-// Sky (nothing hit) is fully fogged: no depth. A fog or media of the author's own disturbs the coding, and
-// POV-Ray fogs only empty or hollow space: an object around the camera must be `hollow`. Radiosity's
-// gathering rays see the fog too: scenes with radiosity get a rougher depth.
+// Sky (nothing hit) is fully fogged: no depth. The author's own fogs, media and radiosity would disturb the
+// coding, so the depth passes render a copy of the scene's files without them (povray_atmosphere.h); the
+// colour pass keeps them. POV-Ray fogs only empty or hollow space: an object around the camera must be
+// `hollow`.
 #include <functional>
 #include <opencv2/core.hpp>
 #include <string>

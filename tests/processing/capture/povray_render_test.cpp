@@ -125,6 +125,33 @@ TEST(PovrayRender, DepthAgreesWithTheSceneGeometryToAMillimetre) {
   EXPECT_GT(std::abs(at_wall[0] - at_wall[2]), 10);
 }
 
+// The author's own atmosphere (a fog in the scene, radiosity in an include) is kept in the colour pass but
+// must not disturb the coded depth: still within a millimetre of the geometry.
+TEST(PovrayRender, TheAuthorsFogAndRadiosityDoNotDisturbTheDepth) {
+  TempDir dir;
+  write_room(dir.path / "room.pov", 1.0);
+  std::ofstream(dir.path / "room.pov", std::ios::app)
+      << "#include \"settings.inc\"\nfog { fog_type 1 distance 2 color rgb <0.5, 0.7, 0.95> }\n";
+  std::ofstream(dir.path / "settings.inc") << "global_settings { radiosity { count 20 error_bound 1.8 } }\n";
+  PovrayOptions options;
+  options.width = 192;
+  options.quality = 9;  // fog (and radiosity) need it in the colour pass too
+  options.antialias = false;
+  PathFrame pose;
+  pose.x = -1.2;
+  pose.y = 0.4;
+  pose.heading = 0.7;
+  const PovrayFrame frame =
+      render_povray_frame((dir.path / "room.pov").string(), pose, options, dir.path.string());
+  expect_depth_matches(frame, pose, options.camera_height_m);
+  // The colour pass is the author's: the wall ahead (4 m away at the horizon) is mostly the bluish fog.
+  const cv::Vec3b far = frame.rgb.at<cv::Vec3b>(48, 96);
+  std::printf("far wall through the author's fog: BGR %d %d %d\n", far[0], far[1], far[2]);
+  EXPECT_GT(far[0], far[2] + 40);  // blue well above red
+  EXPECT_GT(far[0], 150);
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "depth-scene"));  // the copy is cleaned up
+}
+
 // A walk rendered in animation mode, two processes of three frames and one of one: every frame delivered
 // once, in order, each with the depth of its own pose (a mixed-up camera array would put frames at another
 // pose: 0.3 m apart, far above the 1 mm checked). Depth only, as online sampling's coarse pass renders.
