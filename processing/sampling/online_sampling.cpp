@@ -1,5 +1,9 @@
 #include "processing/sampling/online_sampling.h"
 
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
 #include "model/error.h"
 #include "model/option_check.h"
 
@@ -8,6 +12,8 @@ namespace plenopath {
 void OnlineSamplingOptions::check() const {
   require_option(coarse_width >= 16 && coarse_width % 2 == 0, "OnlineSamplingOptions.coarse_width",
                  "must be even and >= 16", coarse_width);
+  require_option(loss_target >= 0.0 && loss_target < 1.0, "OnlineSamplingOptions.loss_target",
+                 "must be in [0, 1)", loss_target);
   depth.check();
 }
 
@@ -40,9 +46,40 @@ OnlineSamplingResult sample_online(const CameraPath& path, const SamplingParamet
   for (std::size_t i = 0; i < seen.size(); ++i)
     if (!seen[i])
       throw Error("online sampling: the renderer left out frame " + std::to_string(path.frames[i].index));
-  // 2. The keyframes, as `sample --method depth` would choose them from a full render.
+  // 2. The keyframes, as `sample --method depth` would choose them from a full render: for the budget, or
+  // the fewest that meet the loss target (bisection on the count: the loss falls as keyframes are added).
   progress.checkpoint(0.3, "sampling");
-  result.keyframes = sample_by_depth(path, volumes, parameters, {}, options.depth, &envelopes);
+  const auto sample_count = [&](int count) {
+    progress.throw_if_cancelled();
+    SamplingParameters p = parameters;
+    if (count > 0) p.count = count;
+    ++result.samplings;
+    Keyframes keyframes = sample_by_depth(path, volumes, p, {}, options.depth, &envelopes);
+    GeometricLoss loss = geometric_loss(path, keyframes, envelopes);
+    return std::make_pair(std::move(keyframes), loss);
+  };
+  if (options.loss_target <= 0.0) {
+    std::tie(result.keyframes, result.loss) = sample_count(0);
+  } else {
+    const int frames = static_cast<int>(path.size());
+    int high = parameters.count > 0 ? std::min(parameters.count, frames) : frames;
+    std::tie(result.keyframes, result.loss) = sample_count(high);
+    result.loss_target_met = result.loss.mean <= options.loss_target;
+    int low = 1;
+    while (result.loss_target_met && low < high) {
+      const int middle = low + (high - low) / 2;
+      auto [keyframes, loss] = sample_count(middle);
+      progress.report(0.3 + 0.05 * (1.0 - double(high - low) / frames),
+                      "sampling: " + std::to_string(middle) + " keyframes lose " + std::to_string(loss.mean));
+      if (loss.mean <= options.loss_target) {
+        high = middle;
+        result.keyframes = std::move(keyframes);
+        result.loss = loss;
+      } else {
+        low = middle + 1;
+      }
+    }
+  }
   // 3. Full frames of the keyframes only.
   std::vector<PathFrame> keyframe_poses;
   for (int index : result.keyframes.indices) {

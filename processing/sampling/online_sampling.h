@@ -12,6 +12,7 @@
 #include "model/camera_path.h"
 #include "model/keyframes.h"
 #include "processing/sampling/depth_sampler.h"
+#include "processing/sampling/sampling_loss.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -19,13 +20,20 @@ namespace plenopath {
 struct OnlineSamplingOptions {
   int coarse_width = 256;  // width of the depth-only pass (at least the sampler's max_depth_width is useless)
   DepthSamplingOptions depth;
+  // > 0: render at full size the fewest keyframes whose geometric loss (mean 1 - IoU of each frame's
+  // eye-level envelope, from the coarse depth, with its stand-in's) is at most this, the paper's "until the
+  // loss target is met"; a budget count then caps them (the ratio is not used). 0: the budget alone.
+  double loss_target = 0.0;
   void check() const;  // throws Error naming the bad field
 };
 
 struct OnlineSamplingResult {
-  Keyframes keyframes;    // indices are path frame indices (PathFrame::index)
-  int coarse_frames = 0;  // frames rendered as coarse depth (all of the path)
-  int full_frames = 0;    // frames rendered at full size (the keyframes)
+  Keyframes keyframes;          // indices are path frame indices (PathFrame::index)
+  int coarse_frames = 0;        // frames rendered as coarse depth (all of the path)
+  int full_frames = 0;          // frames rendered at full size (the keyframes)
+  GeometricLoss loss;           // of the keyframes, on the coarse depth's eye-level envelopes
+  bool loss_target_met = true;  // false when the budget ran out before the loss target was met
+  int samplings = 0;            // keyframe sets tried (one without a loss target)
 };
 
 // Renders the poses' depth (CV_32F metres, 0 = no hit) `width` wide, handing each to `deliver` in order.
