@@ -31,7 +31,9 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
       depth_(new QCheckBox(tr("Depth (two more passes)"), this)),
       online_(
           new QCheckBox(tr("Online: coarse depth of the whole path, full frames only for keyframes"), this)),
-      ratio_(new QDoubleSpinBox(this)) {
+      ratio_(new QDoubleSpinBox(this)),
+      loss_target_(new QDoubleSpinBox(this)),
+      section_(new QCheckBox(tr("Plan from the render: the scene cut at eye height"), this)) {
   setWindowTitle(tr("Render CG scene"));
   setObjectName("cg_scene_dialog");
   auto* scene_button = new QPushButton(tr("Scene…"), this);
@@ -66,10 +68,23 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   units_->setValue(1.0);
   units_->setToolTip(tr("Scene units in a metre (100: a scene drawn in centimetres)"));
   depth_->setChecked(true);
+  section_->setObjectName("cg_section_plan");
+  section_->setToolTip(
+      tr("For a scene without a DXF plan: the project's plan becomes the walls the path saw at eye height "
+         "(it replaces the current plan)"));
   ratio_->setRange(1.0, 10000.0);
   ratio_->setValue(50.0);
   ratio_->setToolTip(tr("Frames of the path per keyframe"));
   ratio_->setEnabled(false);
+  loss_target_->setObjectName("cg_loss_target");
+  loss_target_->setRange(0.0, 0.9);
+  loss_target_->setDecimals(3);
+  loss_target_->setSingleStep(0.01);
+  loss_target_->setValue(0.0);
+  loss_target_->setSpecialValueText(tr("off (frames per keyframe)"));
+  loss_target_->setToolTip(
+      tr("Render the fewest keyframes whose geometric loss (mean 1 − IoU of what each frame sees and what "
+         "its keyframe sees) is at most this; frames per keyframe is then not used"));
   auto* path_row = new QHBoxLayout;
   path_row->addWidget(project_path_);
   path_row->addWidget(waypoints_choice_);
@@ -83,8 +98,10 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   form->addRow(tr("Scene units per metre"), units_);
   form->addRow(QString(), z_up_);
   form->addRow(QString(), depth_);
+  form->addRow(QString(), section_);
   form->addRow(QString(), online_);
   form->addRow(tr("Frames per keyframe"), ratio_);
+  form->addRow(tr("Loss target"), loss_target_);
   form->addRow(tr("Capture folder"), out_row);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   auto* layout = new QVBoxLayout(this);
@@ -93,11 +110,16 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   auto update = [this] {
     waypoints_->setEnabled(waypoints_choice_->isChecked());
     step_->setEnabled(waypoints_choice_->isChecked());
-    ratio_->setEnabled(online_->isChecked());
+    ratio_->setEnabled(online_->isChecked() && loss_target_->value() <= 0.0);
+    loss_target_->setEnabled(online_->isChecked());
+    section_->setEnabled(depth_->isChecked());
+    if (!depth_->isChecked()) section_->setChecked(false);
   };
   update();
   connect(waypoints_choice_, &QRadioButton::toggled, this, update);
   connect(online_, &QCheckBox::toggled, this, update);
+  connect(depth_, &QCheckBox::toggled, this, update);
+  connect(loss_target_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, update);
   connect(scene_button, &QPushButton::clicked, this, [this] {
     const QString f = QFileDialog::getOpenFileName(this, tr("POV-Ray scene"), scene_->text(),
                                                    tr("POV-Ray scenes (*.pov);;All files (*)"));
@@ -141,6 +163,8 @@ CgSceneChoices CgSceneDialog::choices() const {
   c.options.povray.depth = depth_->isChecked();
   c.options.online = online_->isChecked();
   c.options.online_parameters.ratio = ratio_->value();
+  c.options.online_loss_target = loss_target_->value();
+  c.options.section_plan = section_->isChecked();
   return c;
 }
 

@@ -45,6 +45,8 @@ class CgSceneDialog : public QDialog {
   QCheckBox* depth_;
   QCheckBox* online_;
   QDoubleSpinBox* ratio_;
+  QDoubleSpinBox* loss_target_;
+  QCheckBox* section_;
 };
 
 }  // namespace plenopath::widgets

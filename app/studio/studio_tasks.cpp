@@ -11,6 +11,7 @@
 #include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
 #include "processing/sampling/cg_capture.h"
+#include "processing/sampling/cg_project.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/stills/still_on_plan.h"
 #include "processing/stills/stills_along_pairs.h"
@@ -78,32 +79,13 @@ widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choice
     const CgCaptureResult rendered =
         render_cg_capture(choices.scene, along, choices.options, choices.out_dir, rendering);
     progress.checkpoint(0.96, "scanning " + choices.out_dir);
-    FrameSourceOptions options;
-    const std::string folder = (std::filesystem::path(choices.out_dir) / "frames").string();
-    if (choices.options.povray.depth)
-      options.depth_folder = (std::filesystem::path(choices.out_dir) / "depth").string();
-    const std::unique_ptr<FrameSource> source = FrameSource::open(folder, options);
-    project.capture = capture_from_frame_source(*source, Capture{});
-    project.capture.camera_height_m = choices.options.povray.camera_height_m;
-    // The path in the capture's numbering: frame k of the folder is the k-th frame written.
-    CameraPath path = rendered.path;
-    if (static_cast<int>(path.size()) != source->frame_count())
-      throw Error(choices.out_dir + ": " + std::to_string(source->frame_count()) +
-                  " frames in the folder for " + std::to_string(path.size()) +
-                  " rendered (the folder held other frames before?)");
-    for (std::size_t k = 0; k < path.frames.size(); ++k) {
-      path.frames[k].index = static_cast<int>(k);
-      if (k < project.capture.frame_names.size()) path.frames[k].file = project.capture.frame_names[k];
-    }
-    project.path = std::move(path);
-    project.path_points = {};
-    project.visibility = {};
-    project.keyframes = {};
+    land_cg_capture(project, rendered, choices.options, choices.out_dir);
     progress.report(1.0, std::to_string(rendered.full_frames) + " of " +
                              std::to_string(rendered.path_frames) + " frames rendered at full size into " +
                              choices.out_dir);
     return TaskResult{std::move(project), widgets::kCaptureChanged | widgets::kPathChanged |
-                                              widgets::kVisibilityChanged | widgets::kKeyframesChanged};
+                                              widgets::kVisibilityChanged | widgets::kKeyframesChanged |
+                                              (choices.options.section_plan ? widgets::kPlanChanged : 0u)};
   };
 }
 

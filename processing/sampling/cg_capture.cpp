@@ -63,6 +63,10 @@ void CgCaptureOptions::check() const {
   povray.check();
   require_option(jpeg_quality >= 1 && jpeg_quality <= 100, "CgCaptureOptions.jpeg_quality",
                  "must be in [1, 100]", jpeg_quality);
+  section.check();
+  require_option(!section_plan || povray.depth, "CgCaptureOptions.section_plan", "needs depth", section_plan);
+  require_option(online_loss_target >= 0.0 && online_loss_target < 1.0, "CgCaptureOptions.online_loss_target",
+                 "must be in [0, 1)", online_loss_target);
   require_option(coarse_width >= 16 && coarse_width % 2 == 0, "CgCaptureOptions.coarse_width",
                  "must be even and >= 16", coarse_width);
 }
@@ -99,6 +103,13 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   };
   CgCaptureResult result;
   result.path_frames = static_cast<int>(path.size());
+  DepthSectionBuilder section(options.section);
+  auto finish_section = [&] {
+    if (!options.section_plan) return;
+    SubProgress tracing(progress, 0.99, 1.0, "the scene cut at eye height");
+    result.section_plan = section.finish(tracing).plan;
+    result.section_plan.source_file = scene_file;
+  };
   if (!options.online) {
     write_path_file(path, (out / "groundtruth.json").string());
     int written = 0;
@@ -106,6 +117,7 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
         scene_file, path.frames, options.povray, work.string(),
         [&](int i, PovrayFrame&& frame) {
           write_frame(path.frames[static_cast<std::size_t>(i)], frame);
+          if (options.section_plan) section.add(frame.depth, path.frames[static_cast<std::size_t>(i)]);
           ++written;
           progress.report(double(written) / path.size(),
                           "frame " + std::to_string(written) + " of " + std::to_string(path.size()));
@@ -113,6 +125,7 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
         progress);
     result.path = path;
     result.full_frames = result.path_frames;
+    finish_section();
     result.seconds_total = since();
     return result;
   }
@@ -120,6 +133,7 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   parameters.method = SamplingMethod::kDepth;
   OnlineSamplingOptions online;
   online.coarse_width = options.coarse_width;
+  online.loss_target = options.online_loss_target;
   const OnlineSamplingResult sampled = sample_online(
       path, parameters,
       [&](const std::vector<PathFrame>& poses, int width,
@@ -129,7 +143,11 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
         coarse.colour = false;
         coarse.depth = true;
         render_povray_frames(
-            scene_file, poses, coarse, work.string(), [&](int i, PovrayFrame&& f) { deliver(i, f.depth); },
+            scene_file, poses, coarse, work.string(),
+            [&](int i, PovrayFrame&& f) {
+              if (options.section_plan) section.add(f.depth, poses[static_cast<std::size_t>(i)]);
+              deliver(i, f.depth);
+            },
             p);
         result.seconds_coarse = since();
       },
@@ -153,6 +171,10 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   write_path_file(result.path, (out / "groundtruth.json").string());
   result.full_frames = sampled.full_frames;
   result.coarse_frames = sampled.coarse_frames;
+  finish_section();
+  result.online_keyframes = sampled.keyframes;
+  result.online_loss = sampled.loss.mean;
+  result.online_loss_target_met = sampled.loss_target_met;
   result.seconds_total = since();
   const nlohmann::json report = {{"path_frames", result.path_frames},
                                  {"coarse_frames", result.coarse_frames},
@@ -160,6 +182,11 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
                                  {"full_frames", result.full_frames},
                                  {"full_size", {options.povray.width, options.povray.width / 2}},
                                  {"keyframes", sampled.keyframes.indices},
+                                 {"loss_mean", sampled.loss.mean},
+                                 {"loss_p95", sampled.loss.p95},
+                                 {"loss_target", options.online_loss_target},
+                                 {"loss_target_met", sampled.loss_target_met},
+                                 {"samplings", sampled.samplings},
                                  {"seconds_coarse", result.seconds_coarse},
                                  {"seconds_total", result.seconds_total}};
   const fs::path report_file = out / "online_sampling.json";

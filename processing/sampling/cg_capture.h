@@ -10,6 +10,7 @@
 #include "model/camera_path.h"
 #include "model/keyframes.h"
 #include "processing/capture/povray_render.h"
+#include "processing/sampling/depth_section.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -20,12 +21,22 @@ struct CgCaptureOptions {
   bool online = false;
   SamplingParameters online_parameters;  // online: the depth sampler's budget (count, or ratio)
   int coarse_width = 256;                // online: width of the coarse depth pass
-  void check() const;                    // throws Error naming the bad field
+  // The scene cut at eye height as the path saw it (depth_section.h), from every frame's depth (online: the
+  // coarse pass's): the project's plan when the scene comes without a DXF.
+  bool section_plan = false;
+  DepthSectionOptions section;
+  double online_loss_target = 0.0;  // online: > 0, the fewest keyframes losing at most this (see
+                                    // OnlineSamplingOptions::loss_target); the budget count caps them
+  void check() const;               // throws Error naming the bad field
 };
 
 struct CgCaptureResult {
   CameraPath path;  // the frames written (all, or the online keyframes); scale_source "ground_truth"
   int path_frames = 0, full_frames = 0, coarse_frames = 0;
+  double online_loss = 0.0;  // online: the keyframes' geometric loss on the coarse depth's envelopes
+  bool online_loss_target_met = true;
+  FloorPlan section_plan;      // with CgCaptureOptions::section_plan; empty otherwise
+  Keyframes online_keyframes;  // online: the sampler's keyframes (path frame indices), every frame written
   double seconds_coarse = 0.0, seconds_total = 0.0;
 };
 

@@ -87,6 +87,79 @@ assert sorted(os.listdir(out + "/frames")) == ["%06d.jpg" % k for k in r["keyfra
 assert len(os.listdir(out + "/depth")) == r["full_frames"]
 PY
 
+# Online with a loss target: the fewest keyframes whose loss on the coarse depth's envelopes meets it.
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "-4,0 4,0 4,2" --step 0.25 --size 128x64 --online \
+  --loss-target 0.08 --coarse-width 64 --out "$tmp/target" --quiet || fail "render-scene --loss-target exit $?"
+python3 - "$tmp/target" <<'PY' || fail "online sampling with a loss target"
+import json, sys
+r = json.load(open(sys.argv[1] + "/online_sampling.json"))
+assert r["loss_target"] == 0.08 and r["loss_target_met"] and r["loss_mean"] <= 0.08, r
+assert 1 <= r["full_frames"] < 41 and r["full_frames"] == len(r["keyframes"]), r
+PY
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "0,0 1,0" --loss-target 0.1 --out "$tmp/e6" 2> "$tmp/err" \
+  && fail "--loss-target without --online accepted"
+grep -q -- "--online" "$tmp/err" || fail "loss target error: $(cat "$tmp/err")"
+
+# Into a project, as the studio's Process > Render CG scene does: its plan (drawn by ezdxf, not by us), the
+# frames as its capture and their true poses as its path; then sampled and exported from the command line.
+/usr/bin/python3 - "$tmp/room.dxf" <<'PY' || fail "ezdxf could not write the room's plan"
+import sys, ezdxf
+doc = ezdxf.new("R2010")
+doc.header["$INSUNITS"] = 6  # metres
+doc.layers.add("WALLS")
+doc.modelspace().add_lwpolyline([(-5, -3), (5, -3), (5, 3), (-5, 3)], close=True, dxfattribs={"layer": "WALLS"})
+doc.saveas(sys.argv[1])
+PY
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "-4,0 4,0 4,2" --step 0.25 --size 128x64 \
+  --project "$tmp/room.plenopath" --plan "$tmp/room.dxf" --out "$tmp/proj-capture" --quiet \
+  || fail "render-scene --project exit $?"
+"$cli" info "$tmp/room.plenopath" --json > "$tmp/info.json" || fail "info on the rendered project"
+python3 - "$tmp/info.json" <<'PY' || fail "the rendered project: $(cat "$tmp/info.json")"
+import json, sys
+i = json.load(open(sys.argv[1]))
+assert i["capture"]["frames"] == 41 and i["capture"]["depth"] and i["capture"]["size"] == [128, 64], i
+assert i["path"]["frames"] == 41 and abs(i["path"]["length_m"] - 10.0) < 1e-6, i["path"]
+assert i["path"]["scale_source"] == "ground_truth", i["path"]
+assert i["plan"]["occluder_segments"] == 4, i["plan"]
+PY
+"$cli" sample --project "$tmp/room.plenopath" --method depth --count 4 --save --json > "$tmp/sample.json" \
+  || fail "sample on the rendered project"
+"$cli" export --project "$tmp/room.plenopath" --out "$tmp/room-tour.zip" > /dev/null \
+  || fail "export of the rendered project"
+python3 - "$tmp/room-tour.zip" <<'PY' || fail "the exported tour"
+import json, sys, zipfile
+z = zipfile.ZipFile(sys.argv[1])
+assert z.testzip() is None
+tour = json.loads(z.read("tour.json"))
+assert len(tour["keyframes"]) == 4, len(tour["keyframes"])
+PY
+# Online into a project, its plan cut from the render itself: the keyframes are there, so it exports at once.
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "-4,0 4,0 4,2" --step 0.25 --size 128x64 --online \
+  --ratio 8 --coarse-width 128 --project "$tmp/online.plenopath" --section-plan --out "$tmp/online-capture" \
+  --quiet || fail "render-scene --online --project --section-plan exit $?"
+"$cli" info "$tmp/online.plenopath" --json > "$tmp/info2.json" || fail "info on the online project"
+python3 - "$tmp/info2.json" <<'PY' || fail "the online project: $(cat "$tmp/info2.json")"
+import json, sys
+i = json.load(open(sys.argv[1]))
+assert i["keyframes"]["count"] == i["capture"]["frames"] == i["path"]["frames"] >= 2, i
+assert i["keyframes"]["method"] == "depth", i["keyframes"]
+assert i["plan"]["occluder_segments"] >= 4, i["plan"]
+PY
+"$cli" export --project "$tmp/online.plenopath" --out "$tmp/online-tour" > /dev/null \
+  || fail "export of the online project"
+[[ -f "$tmp/online-tour/tour.json" ]] || fail "no tour.json in the online export"
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "0,0 1,0" --project "$tmp/e8.plenopath" --section-plan \
+  --plan "$tmp/room.dxf" --out "$tmp/e8" 2> "$tmp/err" && fail "--section-plan with --plan accepted"
+grep -q "choose one" "$tmp/err" || fail "section plan and plan error: $(cat "$tmp/err")"
+
+# Again without a path: the render follows the project's own path, and the project is updated.
+"$cli" render-scene --scene "$tmp/room.pov" --size 128x64 --no-depth --project "$tmp/room.plenopath" \
+  --out "$tmp/proj-again" --quiet || fail "render-scene along the project's path exit $?"
+[[ $(ls "$tmp/proj-again/frames" | wc -l) -eq 41 ]] || fail "the project's path was not followed"
+"$cli" render-scene --scene "$tmp/room.pov" --waypoints "0,0 1,0" --plan "$tmp/room.dxf" --out "$tmp/e7" \
+  2> "$tmp/err" && fail "--plan without --project accepted"
+grep -q -- "--project" "$tmp/err" || fail "plan without project error: $(cat "$tmp/err")"
+
 # Errors: a missing scene, a broken one, no path, a size that is not 2:1, no povray.
 "$cli" render-scene --scene "$tmp/missing.pov" --waypoints "0,0 1,0" --out "$tmp/e1" 2> "$tmp/err" && fail "missing scene accepted"
 grep -q "missing.pov" "$tmp/err" || fail "missing scene error: $(cat "$tmp/err")"

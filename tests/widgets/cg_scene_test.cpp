@@ -88,6 +88,42 @@ TEST(CgScene, OnlineRendersOnlyTheKeyframes) {
   EXPECT_EQ(p.capture.frame_names.size(), p.path.size());
   for (std::size_t k = 0; k < p.path.size(); ++k) EXPECT_EQ(p.path.frames[k].index, static_cast<int>(k));
   EXPECT_TRUE(fs::exists(dir.path / "online" / "online_sampling.json"));
+  // The frames written are the sampler's keyframes, and stay keyframes: Export works at once.
+  ASSERT_EQ(p.keyframes.indices.size(), p.path.size());
+  for (std::size_t k = 0; k < p.path.size(); ++k) EXPECT_EQ(p.keyframes.indices[k], static_cast<int>(k));
+  EXPECT_EQ(p.keyframes.parameters.method, SamplingMethod::kDepth);
+}
+
+// A scene without a DXF: the plan cut from the render at eye height (online, from the coarse pass of every
+// frame) is the room's four walls, within a few centimetres; one undo takes plan, capture and path back.
+TEST(CgScene, ThePlanCutFromTheRenderIsTheRoomsWalls) {
+  SceneDir dir;
+  test::TestStudio s;
+  widgets::CgSceneChoices c = room_choices(dir, "section", true);
+  c.options.section_plan = true;
+  c.options.coarse_width = 256;
+  ASSERT_TRUE(s.window.tasks().start("Render CG scene", studio::render_cg_scene_task(c)));
+  s.window.tasks().wait();
+  ASSERT_TRUE(s.errors.isEmpty()) << s.errors.join("\n").toStdString();
+  const FloorPlan& plan = s.window.document().project().plan;
+  ASSERT_FALSE(plan.occluder_segments().empty());
+  // Each traced segment lies on one of the room's walls x = +-5, y = +-3 (POV z) or on the sphere's section
+  // (centre (2, 1.5), radius 0.5 at 1 m; the camera cuts it at 1.6 m: none), within 6 cm.
+  double length = 0, on_walls = 0;
+  for (const PlanSegment& seg : plan.occluder_segments()) {
+    for (const Eigen::Vector2d& p : {seg.a, seg.b, Eigen::Vector2d(0.5 * (seg.a + seg.b))}) {
+      const double d = std::min({std::abs(std::abs(p.x()) - 5.0), std::abs(std::abs(p.y()) - 3.0)});
+      length += seg.length() / 3;
+      if (d < 0.06 && std::abs(p.x()) < 5.06 && std::abs(p.y()) < 3.06) on_walls += seg.length() / 3;
+    }
+  }
+  std::printf("plan cut from the render: %zu segments, %.1f m, %.1f %% on the room's walls\n",
+              plan.occluder_segments().size(), length, 100 * on_walls / length);
+  EXPECT_GT(length, 20.0);  // the path sees all four walls: 32 m in all
+  EXPECT_GE(on_walls / length, 0.97);
+  s.window.document().undo_stack()->undo();
+  EXPECT_TRUE(s.window.document().project().plan.empty());
+  EXPECT_TRUE(s.window.document().project().capture.empty());
 }
 
 TEST(CgScene, AMissingPovrayIsAMessage) {
@@ -115,6 +151,26 @@ TEST(CgScene, DialogChoicesMapToTheRender) {
   EXPECT_TRUE(c.options.online);
   EXPECT_EQ(c.options.povray.width, 2048);
   EXPECT_DOUBLE_EQ(c.options.online_parameters.ratio, 50.0);
+  EXPECT_DOUBLE_EQ(c.options.online_loss_target, 0.0);
+  // A loss target replaces the frames-per-keyframe budget.
+  auto* loss_target = dialog.findChild<QDoubleSpinBox*>("cg_loss_target");
+  ASSERT_NE(loss_target, nullptr);
+  EXPECT_TRUE(loss_target->isEnabled());
+  loss_target->setValue(0.08);
+  EXPECT_DOUBLE_EQ(dialog.choices().options.online_loss_target, 0.08);
+  int ratio_boxes_enabled = 0;
+  for (QDoubleSpinBox* box : dialog.findChildren<QDoubleSpinBox*>())
+    if (box->toolTip() == "Frames of the path per keyframe" && box->isEnabled()) ++ratio_boxes_enabled;
+  EXPECT_EQ(ratio_boxes_enabled, 0);
+  // The plan cut from the render needs depth.
+  auto* section = dialog.findChild<QCheckBox*>("cg_section_plan");
+  ASSERT_NE(section, nullptr);
+  section->setChecked(true);
+  EXPECT_TRUE(dialog.choices().options.section_plan);
+  for (QCheckBox* box : dialog.findChildren<QCheckBox*>())
+    if (box->text().startsWith("Depth")) box->setChecked(false);
+  EXPECT_FALSE(section->isEnabled());
+  EXPECT_FALSE(dialog.choices().options.section_plan);
 }
 
 }  // namespace
