@@ -80,11 +80,13 @@ widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choice
     progress.checkpoint(0.96, "scanning " + choices.out_dir);
     FrameSourceOptions options;
     const std::string folder = (std::filesystem::path(choices.out_dir) / "frames").string();
-    if (choices.options.povray.depth)
+    const bool blender = is_blender_scene(choices.scene);
+    if (blender ? choices.options.blender.depth : choices.options.povray.depth)
       options.depth_folder = (std::filesystem::path(choices.out_dir) / "depth").string();
     const std::unique_ptr<FrameSource> source = FrameSource::open(folder, options);
     project.capture = capture_from_frame_source(*source, Capture{});
-    project.capture.camera_height_m = choices.options.povray.camera_height_m;
+    project.capture.camera_height_m =
+        blender ? choices.options.blender.camera_height_m : choices.options.povray.camera_height_m;
     // The path in the capture's numbering: frame k of the folder is the k-th frame written.
     CameraPath path = rendered.path;
     if (static_cast<int>(path.size()) != source->frame_count())
