@@ -44,7 +44,8 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   auto* out_row = new QHBoxLayout;
   out_row->addWidget(out_, 1);
   out_row->addWidget(out_button);
-  scene_->setPlaceholderText(tr("POV-Ray scene (.pov); its own camera is replaced"));
+  scene_->setPlaceholderText(
+      tr("POV-Ray scene (.pov) or Blender scene (.blend); its own camera is replaced"));
   out_->setPlaceholderText(tr("folder for the frames, depth and ground truth"));
   if (!scene.isEmpty())
     out_->setText(QFileInfo(scene).absolutePath() + "/" + QFileInfo(scene).baseName() + "-capture");
@@ -114,15 +115,24 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
     loss_target_->setEnabled(online_->isChecked());
     section_->setEnabled(depth_->isChecked());
     if (!depth_->isChecked()) section_->setChecked(false);
+    // A Blender scene knows its units (its unit scale) and is z up: those two are POV-Ray's alone.
+    const bool blender = is_blender_scene(scene_->text().toStdString());
+    units_->setEnabled(!blender);
+    z_up_->setEnabled(!blender);
+    units_->setToolTip(blender ? tr("A Blender scene's own unit scale says its units")
+                               : tr("Scene units in a metre (100: a scene drawn in centimetres)"));
+    depth_->setText(blender ? tr("Depth (Cycles' Z pass: one more render)") : tr("Depth (two more passes)"));
   };
   update();
   connect(waypoints_choice_, &QRadioButton::toggled, this, update);
   connect(online_, &QCheckBox::toggled, this, update);
   connect(depth_, &QCheckBox::toggled, this, update);
   connect(loss_target_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, update);
+  connect(scene_, &QLineEdit::textChanged, this, update);
   connect(scene_button, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, tr("POV-Ray scene"), scene_->text(),
-                                                   tr("POV-Ray scenes (*.pov);;All files (*)"));
+    const QString f = QFileDialog::getOpenFileName(
+        this, tr("CG scene"), scene_->text(),
+        tr("CG scenes (*.pov *.blend);;POV-Ray scenes (*.pov);;Blender scenes (*.blend);;All files (*)"));
     if (f.isEmpty()) return;
     scene_->setText(f);
     if (out_->text().isEmpty())
@@ -135,7 +145,7 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
   connect(buttons, &QDialogButtonBox::accepted, this, [this] {
     QString problem;
     if (!QFileInfo(scene_->text()).isFile())
-      problem = tr("Choose the POV-Ray scene to render (%1 is no file).").arg(scene_->text());
+      problem = tr("Choose the POV-Ray or Blender scene to render (%1 is no file).").arg(scene_->text());
     else if (out_->text().trimmed().isEmpty())
       problem = tr("Choose the folder to write the capture into.");
     else if (waypoints_choice_->isChecked() && waypoints_->text().trimmed().isEmpty())
@@ -161,6 +171,10 @@ CgSceneChoices CgSceneDialog::choices() const {
   c.options.povray.units_per_metre = units_->value();
   c.options.povray.z_up = z_up_->isChecked();
   c.options.povray.depth = depth_->isChecked();
+  // A Blender scene: the same size, height and depth; its units are its own unit scale's.
+  c.options.blender.width = c.options.povray.width;
+  c.options.blender.camera_height_m = c.options.povray.camera_height_m;
+  c.options.blender.depth = c.options.povray.depth;
   c.options.online = online_->isChecked();
   c.options.online_parameters.ratio = ratio_->value();
   c.options.online_loss_target = loss_target_->value();

@@ -1,7 +1,7 @@
 #pragma once
-// Process > Render CG scene (issue 23): the author's POV-Ray scene rendered along the project's path (or
-// waypoints typed in), every frame or online (coarse depth first, full frames only for the keyframes),
-// into a folder that then becomes the project's capture.
+// Process > Render CG scene (issue 23): the author's POV-Ray or Blender scene rendered along the project's
+// path (or waypoints typed in), every frame or online (coarse depth first, full frames only for the
+// keyframes), into a folder that then becomes the project's capture.
 #include <QDialog>
 #include <string>
 
@@ -16,7 +16,7 @@ class QSpinBox;
 namespace plenopath::widgets {
 
 struct CgSceneChoices {
-  std::string scene;    // .pov file
+  std::string scene;    // .pov or .blend file
   std::string out_dir;  // capture folder to write
   bool use_project_path = true;
   std::string waypoints;  // "X,Y X,Y ..." (metres) when not the project's path

@@ -1,10 +1,12 @@
-// `plenopath render-scene --scene SCENE.pov (--path PATH.json | --waypoints "X,Y X,Y ...") [--step 0.1]
-// [--frames N] [--size 2048x1024] [--camera-height 1.6] [--units-per-metre 1] [--no-depth] [--depth-fog 8]
-// [--quality 9] [--no-antialias] [--jpeg-quality Q] [--povray PROGRAM] [--processes N]
-// [--frames-per-process N] [--online [--budget N | --ratio R] [--loss-target L] [--coarse-width 256]]
-// [--project P.plenopath [--plan PLAN.dxf | --section-plan]] --out DIR`:
-// the author's own POV-Ray scene rendered with the studio's spherical camera along a path
-// (processing/capture/povray_render.h), colour and depth, with the poses as ground truth. The output is laid
+// `plenopath render-scene --scene SCENE.pov|SCENE.blend (--path PATH.json | --waypoints "X,Y X,Y ...")
+// [--step 0.1] [--frames N] [--size 2048x1024] [--camera-height 1.6] [--units-per-metre 1] [--no-depth]
+// [--jpeg-quality Q] [--online [--budget N | --ratio R] [--loss-target L] [--coarse-width 256]]
+// [--project P.plenopath [--plan PLAN.dxf | --section-plan]] --out DIR`, with for POV-Ray
+// [--z-up] [--depth-fog 8] [--quality 9] [--no-antialias] [--povray PROGRAM] [--processes N]
+// [--frames-per-process N], for Blender [--samples N] [--blender PROGRAM]:
+// the author's own POV-Ray scene (processing/capture/povray_render.h) or Blender scene (Cycles,
+// processing/capture/blender_render.h; by the extension) rendered with the studio's spherical camera along a
+// path, colour and depth, with the poses as ground truth. The output is laid
 // out as `plenopath render`'s: DIR/groundtruth.json (the path, with `file` fields), DIR/frames/NNNNNN.jpg,
 // DIR/depth/NNNNNN.png (16-bit millimetres), so `track`, `sample` and the studio take it as a capture.
 // --online renders the whole path as coarse depth first and only the keyframes the depth sampler chooses
@@ -29,6 +31,7 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
+#include "processing/capture/blender_render.h"
 #include "processing/capture/povray_render.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/sampling/cg_capture.h"
@@ -40,15 +43,19 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string scene, path, waypoints, out, size = "2048x1024", povray = "povray";
+  std::string scene, path, waypoints, out, size = "2048x1024", povray = "povray", blender = "blender";
   std::string project, plan;  // land the render in this project (made when missing), with this plan
   double step = 0.1, camera_height = 1.6, units_per_metre = 1.0, depth_fog = 0.0;
-  int frames = 0, quality = 9, jpeg_quality = 92, processes = 0, frames_per_process = 16;
+  int frames = 0, quality = 9, jpeg_quality = 92, processes = 0, frames_per_process = 16, samples = 0;
   bool no_depth = false, no_antialias = false, quiet = false, z_up = false, section_plan = false;
   // Online sampling: coarse depth of the whole path, full frames only for the keyframes it gives.
   bool online = false;
   int budget = 0, coarse_width = 256;
   double ratio = 50.0, loss_target = 0.0;
+  // Options given that the scene's renderer has no use for (refused), and whether the units were given
+  // (a Blender scene otherwise says its own).
+  std::vector<std::string> other_renderers_options;
+  bool units_given = false;
 };
 
 int run(const Options& o) {
@@ -81,9 +88,29 @@ int run(const Options& o) {
     throw Error("--section-plan and --plan both give the plan: choose one");
   if (o.section_plan && o.no_depth)
     throw Error("--section-plan cuts the scene from its depth: drop --no-depth");
+  BlenderOptions& blender = options.blender;
+  blender.width = width;
+  blender.executable = o.blender;
+  blender.camera_height_m = o.camera_height;
+  blender.units_per_metre = o.units_given ? o.units_per_metre : 0.0;
+  blender.depth = !o.no_depth;
+  blender.samples = o.samples;
+  const bool is_blender = is_blender_scene(o.scene);
+  if (!o.other_renderers_options.empty()) {
+    std::string names;
+    for (const std::string& n : o.other_renderers_options) names += (names.empty() ? "" : ", ") + n;
+    throw Error(
+        names + (o.other_renderers_options.size() > 1 ? " are" : " is") + " for " +
+        (is_blender ? "POV-Ray scenes, not the Blender scene " : "Blender scenes, not the POV-Ray scene ") +
+        o.scene);
+  }
   options.check();
   if (o.loss_target > 0 && !o.online) throw Error("--loss-target goes with --online");
-  find_povray(povray.executable);  // before any output is written
+  // The renderer is there before any output is written.
+  if (is_blender)
+    find_blender(blender.executable);
+  else
+    find_povray(povray.executable);
   if (!fs::is_regular_file(o.scene)) throw Error("--scene " + o.scene + ": no such file");
   if (o.frames < 0) throw Error("--frames must be >= 0");
   if (!o.plan.empty() && o.project.empty()) throw Error("--plan goes with --project (the project's plan)");
@@ -142,8 +169,11 @@ int run(const Options& o) {
 Command add_render_scene_command(CLI::App& parent) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = parent.add_subcommand(
-      "render-scene", "Render the author's POV-Ray scene with the spherical camera along a path, with depth");
-  sub->add_option("--scene", o->scene, "POV-Ray scene (.pov); its own camera is replaced")->required();
+      "render-scene",
+      "Render the author's POV-Ray or Blender scene with the spherical camera along a path, with depth");
+  sub->add_option("--scene", o->scene,
+                  "POV-Ray scene (.pov) or Blender scene (.blend, Cycles); its own camera is replaced")
+      ->required();
   auto* path = sub->add_option("--path", o->path, "Path file (JSON) to render along");
   auto* waypoints = sub->add_option("--waypoints", o->waypoints,
                                     "Walk through these plan points: \"X,Y X,Y ...\" (metres)");
@@ -152,25 +182,41 @@ Command add_render_scene_command(CLI::App& parent) {
   sub->add_option("--frames", o->frames, "At most this many frames (0 = all)")->capture_default_str();
   sub->add_option("--size", o->size, "Panorama size WIDTHxHEIGHT (2:1)")->capture_default_str();
   sub->add_option("--camera-height", o->camera_height,
-                  "Camera height above the scene's floor (y = 0), metres")
+                  "Camera height above the scene's floor (POV-Ray y = 0, Blender z = 0), metres")
       ->capture_default_str();
-  sub->add_option("--units-per-metre", o->units_per_metre, "Scene units in a metre (100: a scene in cm)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_flag("--z-up", o->z_up, "The scene is modelled with z up (sky z), as CAD exports are");
+  auto* units =
+      sub->add_option("--units-per-metre", o->units_per_metre,
+                      "Scene units in a metre (100: a scene in cm; Blender: default the scene's unit "
+                      "scale)")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+  std::vector<CLI::Option*> pov_only, blender_only;
+  pov_only.push_back(sub->add_flag("--z-up", o->z_up,
+                                   "POV-Ray: the scene is modelled with z up (sky z), as CAD exports are"));
   sub->add_flag("--no-depth", o->no_depth, "Colour only (no depth passes: a third of the time)");
-  sub->add_option("--depth-fog", o->depth_fog, "Fog distance of the depth passes, metres (0 = 8 m)")
-      ->capture_default_str();
-  sub->add_option("--quality", o->quality, "POV-Ray quality of the colour pass (0-11)")
-      ->capture_default_str();
-  sub->add_flag("--no-antialias", o->no_antialias, "No antialiasing in the colour pass");
+  pov_only.push_back(sub->add_option("--depth-fog", o->depth_fog,
+                                     "POV-Ray: fog distance of the depth passes, metres (0 = 8 m)")
+                         ->capture_default_str());
+  pov_only.push_back(sub->add_option("--quality", o->quality, "POV-Ray quality of the colour pass (0-11)")
+                         ->capture_default_str());
+  pov_only.push_back(
+      sub->add_flag("--no-antialias", o->no_antialias, "POV-Ray: no antialiasing in the colour pass"));
   sub->add_option("--jpeg-quality", o->jpeg_quality, "JPEG quality 1..100")->capture_default_str();
-  sub->add_option("--povray", o->povray, "The POV-Ray program")->capture_default_str();
-  sub->add_option("--processes", o->processes, "POV-Ray processes at once (0 = the cores + 2)")
-      ->capture_default_str();
-  sub->add_option("--frames-per-process", o->frames_per_process,
-                  "Frames one POV-Ray process renders (animation mode: it idles a quarter second a frame)")
-      ->capture_default_str();
+  pov_only.push_back(sub->add_option("--povray", o->povray, "The POV-Ray program")->capture_default_str());
+  pov_only.push_back(
+      sub->add_option("--processes", o->processes, "POV-Ray processes at once (0 = the cores + 2)")
+          ->capture_default_str());
+  pov_only.push_back(
+      sub->add_option(
+             "--frames-per-process", o->frames_per_process,
+             "Frames one POV-Ray process renders (animation mode: it idles a quarter second a frame)")
+          ->capture_default_str());
+  blender_only.push_back(sub->add_option("--samples", o->samples,
+                                         "Blender: Cycles samples of the colour render (0 = the scene's)")
+                             ->check(CLI::NonNegativeNumber)
+                             ->capture_default_str());
+  blender_only.push_back(
+      sub->add_option("--blender", o->blender, "The Blender program")->capture_default_str());
   sub->add_flag("--online", o->online,
                 "Online sampling: the whole path as coarse depth first, full frames only for the keyframes "
                 "the depth sampler chooses from it");
@@ -192,7 +238,12 @@ Command add_render_scene_command(CLI::App& parent) {
                 "scene (for a scene without a DXF)");
   sub->add_option("--out", o->out, "Output folder")->required();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
-  return {sub, [o]() { return run(*o); }};
+  return {sub, [o, units, pov_only, blender_only]() {
+            o->units_given = units->count() > 0;
+            for (CLI::Option* option : is_blender_scene(o->scene) ? pov_only : blender_only)
+              if (option->count() > 0) o->other_renderers_options.push_back(option->get_name());
+            return run(*o);
+          }};
 }
 
 }  // namespace plenopath::cli

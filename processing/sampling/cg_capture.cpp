@@ -61,30 +61,72 @@ CameraPath walk_waypoints(const std::string& text, double step) {
 
 void CgCaptureOptions::check() const {
   povray.check();
+  blender.check();
   require_option(jpeg_quality >= 1 && jpeg_quality <= 100, "CgCaptureOptions.jpeg_quality",
                  "must be in [1, 100]", jpeg_quality);
   section.check();
-  require_option(!section_plan || povray.depth, "CgCaptureOptions.section_plan", "needs depth", section_plan);
   require_option(online_loss_target >= 0.0 && online_loss_target < 1.0, "CgCaptureOptions.online_loss_target",
                  "must be in [0, 1)", online_loss_target);
   require_option(coarse_width >= 16 && coarse_width % 2 == 0, "CgCaptureOptions.coarse_width",
                  "must be even and >= 16", coarse_width);
 }
 
+namespace {
+
+// Renders `poses` with the scene's renderer, handing each frame's colour (empty when `coarse_width` > 0) and
+// depth to `deliver` in order. `coarse_width` > 0: depth only, that wide (online sampling's coarse pass).
+void render_frames(const std::string& scene_file, const std::vector<PathFrame>& poses,
+                   const CgCaptureOptions& options, int coarse_width, const fs::path& work,
+                   const std::function<void(int, cv::Mat&& rgb, cv::Mat&& depth)>& deliver,
+                   Progress& progress) {
+  if (is_blender_scene(scene_file)) {
+    BlenderOptions blender = options.blender;
+    if (coarse_width > 0) {
+      blender.width = coarse_width;
+      blender.colour = false;
+      blender.depth = true;
+    }
+    render_blender_frames(
+        scene_file, poses, blender, work.string(),
+        [&](int i, BlenderFrame&& f) { deliver(i, std::move(f.rgb), std::move(f.depth)); }, progress);
+    return;
+  }
+  PovrayOptions povray = options.povray;
+  if (coarse_width > 0) {
+    povray.width = coarse_width;
+    povray.colour = false;
+    povray.depth = true;
+  }
+  render_povray_frames(
+      scene_file, poses, povray, work.string(),
+      [&](int i, PovrayFrame&& f) { deliver(i, std::move(f.rgb), std::move(f.depth)); }, progress);
+}
+
+}  // namespace
+
 CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPath& path_in,
                                   const CgCaptureOptions& options, const std::string& out_dir,
                                   Progress& progress) {
   options.check();
-  find_povray(options.povray.executable);  // before any output is written
-  if (!fs::is_regular_file(scene_file)) throw Error("POV-Ray scene " + scene_file + ": no such file");
+  const bool blender = is_blender_scene(scene_file);
+  // The renderer is there before any output is written.
+  if (blender)
+    find_blender(options.blender.executable);
+  else
+    find_povray(options.povray.executable);
+  if (!fs::is_regular_file(scene_file))
+    throw Error((blender ? "Blender scene " : "POV-Ray scene ") + scene_file + ": no such file");
+  const bool depth = blender ? options.blender.depth : options.povray.depth;
+  const int full_width = blender ? options.blender.width : options.povray.width;
+  if (options.section_plan && !depth) throw Error("the plan cut at eye height needs the render's depth");
   if (path_in.empty()) throw Error("the path has no frames");
   CameraPath path = path_in;
   path.scale_source = "ground_truth";
   for (PathFrame& f : path.frames) f.file = "frames/" + numbered_file_name(f.index, "jpg");
   const fs::path out(out_dir);
   fs::create_directories(out / "frames");
-  if (options.povray.depth) fs::create_directories(out / "depth");
-  const fs::path work = out / ".povray";
+  if (depth) fs::create_directories(out / "depth");
+  const fs::path work = out / (blender ? ".blender" : ".povray");
   fs::create_directories(work);
   // Whatever happens, the work folder goes.
   struct RemoveWork {
@@ -96,13 +138,14 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   } remove_work{work};
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  auto write_frame = [&](const PathFrame& pose, const PovrayFrame& frame) {
-    write_image((out / pose.file).string(), frame.rgb, options.jpeg_quality);
-    if (options.povray.depth)
-      write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), frame.depth);
+  auto write_frame = [&](const PathFrame& pose, const cv::Mat& rgb, const cv::Mat& depth_image) {
+    write_image((out / pose.file).string(), rgb, options.jpeg_quality);
+    if (depth) write_depth_png((out / "depth" / numbered_file_name(pose.index, "png")).string(), depth_image);
   };
   CgCaptureResult result;
   result.path_frames = static_cast<int>(path.size());
+  result.depth = depth;
+  result.camera_height_m = blender ? options.blender.camera_height_m : options.povray.camera_height_m;
   DepthSectionBuilder section(options.section);
   auto finish_section = [&] {
     if (!options.section_plan) return;
@@ -113,11 +156,11 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   if (!options.online) {
     write_path_file(path, (out / "groundtruth.json").string());
     int written = 0;
-    render_povray_frames(
-        scene_file, path.frames, options.povray, work.string(),
-        [&](int i, PovrayFrame&& frame) {
-          write_frame(path.frames[static_cast<std::size_t>(i)], frame);
-          if (options.section_plan) section.add(frame.depth, path.frames[static_cast<std::size_t>(i)]);
+    render_frames(
+        scene_file, path.frames, options, 0, work,
+        [&](int i, cv::Mat&& rgb, cv::Mat&& depth_image) {
+          write_frame(path.frames[static_cast<std::size_t>(i)], rgb, depth_image);
+          if (options.section_plan) section.add(depth_image, path.frames[static_cast<std::size_t>(i)]);
           ++written;
           progress.report(double(written) / path.size(),
                           "frame " + std::to_string(written) + " of " + std::to_string(path.size()));
@@ -138,25 +181,21 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
       path, parameters,
       [&](const std::vector<PathFrame>& poses, int width,
           const std::function<void(int, const cv::Mat&)>& deliver, Progress& p) {
-        PovrayOptions coarse = options.povray;
-        coarse.width = width;
-        coarse.colour = false;
-        coarse.depth = true;
-        render_povray_frames(
-            scene_file, poses, coarse, work.string(),
-            [&](int i, PovrayFrame&& f) {
-              if (options.section_plan) section.add(f.depth, poses[static_cast<std::size_t>(i)]);
-              deliver(i, f.depth);
+        render_frames(
+            scene_file, poses, options, width, work,
+            [&](int i, cv::Mat&&, cv::Mat&& depth_image) {
+              if (options.section_plan) section.add(depth_image, poses[static_cast<std::size_t>(i)]);
+              deliver(i, depth_image);
             },
             p);
         result.seconds_coarse = since();
       },
       [&](const std::vector<PathFrame>& poses, Progress& p) {
         int written = 0;
-        render_povray_frames(
-            scene_file, poses, options.povray, work.string(),
-            [&](int i, PovrayFrame&& f) {
-              write_frame(poses[static_cast<std::size_t>(i)], f);
+        render_frames(
+            scene_file, poses, options, 0, work,
+            [&](int i, cv::Mat&& rgb, cv::Mat&& depth_image) {
+              write_frame(poses[static_cast<std::size_t>(i)], rgb, depth_image);
               ++written;
               p.report(double(written) / poses.size(),
                        "keyframe " + std::to_string(written) + " of " + std::to_string(poses.size()));
@@ -180,7 +219,7 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
                                  {"coarse_frames", result.coarse_frames},
                                  {"coarse_width", options.coarse_width},
                                  {"full_frames", result.full_frames},
-                                 {"full_size", {options.povray.width, options.povray.width / 2}},
+                                 {"full_size", {full_width, full_width / 2}},
                                  {"keyframes", sampled.keyframes.indices},
                                  {"loss_mean", sampled.loss.mean},
                                  {"loss_p95", sampled.loss.p95},

@@ -1,5 +1,6 @@
 #pragma once
-// A CG capture (issue 23): the author's POV-Ray scene rendered along a path into a capture folder laid out
+// A CG capture (issue 23): the author's POV-Ray scene (.pov, povray_render.h) or Blender scene (.blend,
+// blender_render.h; chosen by the file's extension) rendered along a path into a capture folder laid out
 // as `plenopath render` writes one (DIR/groundtruth.json with `file` fields, DIR/frames/NNNNNN.jpg,
 // DIR/depth/NNNNNN.png in 16-bit millimetres), so tracking, sampling and the studio take it like any other.
 // Every frame, or online (online_sampling.h): the whole path as coarse depth, full frames only for the
@@ -9,6 +10,7 @@
 
 #include "model/camera_path.h"
 #include "model/keyframes.h"
+#include "processing/capture/blender_render.h"
 #include "processing/capture/povray_render.h"
 #include "processing/sampling/depth_section.h"
 #include "processing/util/progress.h"
@@ -16,7 +18,8 @@
 namespace plenopath {
 
 struct CgCaptureOptions {
-  PovrayOptions povray;  // size, camera height, units, depth, quality, processes
+  PovrayOptions povray;    // a .pov scene: size, camera height, units, depth, quality, processes
+  BlenderOptions blender;  // a .blend scene: size, camera height, units (0 = the scene's), depth, samples
   int jpeg_quality = 92;
   bool online = false;
   SamplingParameters online_parameters;  // online: the depth sampler's budget (count, or ratio)
@@ -33,7 +36,9 @@ struct CgCaptureOptions {
 struct CgCaptureResult {
   CameraPath path;  // the frames written (all, or the online keyframes); scale_source "ground_truth"
   int path_frames = 0, full_frames = 0, coarse_frames = 0;
-  double online_loss = 0.0;  // online: the keyframes' geometric loss on the coarse depth's envelopes
+  bool depth = false;            // depth maps were written (DIR/depth)
+  double camera_height_m = 0.0;  // the renderer's camera height
+  double online_loss = 0.0;      // online: the keyframes' geometric loss on the coarse depth's envelopes
   bool online_loss_target_met = true;
   FloorPlan section_plan;      // with CgCaptureOptions::section_plan; empty otherwise
   Keyframes online_keyframes;  // online: the sampler's keyframes (path frame indices), every frame written
@@ -44,8 +49,8 @@ struct CgCaptureResult {
 // along the path (the direction over the half metre around it, so corners turn smoothly). Throws Error.
 CameraPath walk_waypoints(const std::string& text, double step);
 
-// Throws Error (POV-Ray's own messages included) or Cancelled; `out_dir` is created, and a cancelled or
-// failed run leaves what it wrote so far (without its work folder).
+// Throws Error (POV-Ray's or Blender's own messages included) or Cancelled; `out_dir` is created, and a
+// cancelled or failed run leaves what it wrote so far (without its work folder).
 CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPath& path,
                                   const CgCaptureOptions& options, const std::string& out_dir,
                                   Progress& progress = null_progress());

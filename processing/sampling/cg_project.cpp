@@ -13,10 +13,10 @@ void land_cg_capture(Project& project, const CgCaptureResult& rendered, const Cg
   namespace fs = std::filesystem;
   FrameSourceOptions source_options;
   const std::string folder = (fs::path(out_dir) / "frames").string();
-  if (options.povray.depth) source_options.depth_folder = (fs::path(out_dir) / "depth").string();
+  if (rendered.depth) source_options.depth_folder = (fs::path(out_dir) / "depth").string();
   const std::unique_ptr<FrameSource> source = FrameSource::open(folder, source_options);
   Capture capture = capture_from_frame_source(*source, Capture{});
-  capture.camera_height_m = options.povray.camera_height_m;
+  capture.camera_height_m = rendered.camera_height_m;
   // The path in the capture's numbering: frame k of the folder is the k-th frame written.
   CameraPath path = rendered.path;
   if (static_cast<int>(path.size()) != source->frame_count())

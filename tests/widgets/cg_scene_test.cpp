@@ -8,6 +8,7 @@
 #include <QLineEdit>
 #include <QRadioButton>
 #include <QSpinBox>
+#include <QTest>
 #include <QUndoStack>
 #include <filesystem>
 #include <fstream>
@@ -171,6 +172,36 @@ TEST(CgScene, DialogChoicesMapToTheRender) {
     if (box->text().startsWith("Depth")) box->setChecked(false);
   EXPECT_FALSE(section->isEnabled());
   EXPECT_FALSE(dialog.choices().options.section_plan);
+}
+
+// A Blender scene: its units are its own and it is z up, so those two POV-Ray choices are off; size, height
+// and depth go to the Blender render too.
+TEST(CgScene, DialogTakesABlenderScene) {
+  widgets::CgSceneDialog dialog(nullptr, false, "/tmp/scene.pov");
+  QDoubleSpinBox* units = nullptr;
+  for (QDoubleSpinBox* box : dialog.findChildren<QDoubleSpinBox*>())
+    if (box->toolTip().contains("metre")) units = box;
+  QCheckBox* z_up = nullptr;
+  for (QCheckBox* box : dialog.findChildren<QCheckBox*>())
+    if (box->text().contains("z up")) z_up = box;
+  ASSERT_TRUE(units && z_up);
+  EXPECT_TRUE(units->isEnabled());
+  EXPECT_TRUE(z_up->isEnabled());
+  QLineEdit* scene = dialog.findChildren<QLineEdit*>()[0];
+  ASSERT_EQ(scene->text(), "/tmp/scene.pov");
+  scene->selectAll();
+  QTest::keyClicks(scene, "/tmp/room.blend");
+  EXPECT_FALSE(units->isEnabled());
+  EXPECT_FALSE(z_up->isEnabled());
+  QSpinBox* width = dialog.findChildren<QSpinBox*>()[0];
+  width->setValue(1024);
+  const widgets::CgSceneChoices c = dialog.choices();
+  EXPECT_EQ(c.scene, "/tmp/room.blend");
+  EXPECT_TRUE(is_blender_scene(c.scene));
+  EXPECT_EQ(c.options.blender.width, 1024);
+  EXPECT_DOUBLE_EQ(c.options.blender.camera_height_m, 1.6);
+  EXPECT_TRUE(c.options.blender.depth);
+  EXPECT_DOUBLE_EQ(c.options.blender.units_per_metre, 0.0);  // the scene's own
 }
 
 }  // namespace
