@@ -117,10 +117,11 @@ template <bool periodic>
 }
 
 template <bool periodic>
-inline __m128 sample_pyramid(const TexturePyramid& t, double x, double y, double footprint) {
+inline __m128 sample_pyramid(const TexturePyramid& t, double x, double y, double footprint,
+                             Log2Memo* memo = nullptr) {
   const int top = static_cast<int>(t.levels.size()) - 1;
   if (!(footprint > 1.0)) return sample_level<periodic>(t, 0, x, y);
-  const double lod = std::log2(footprint);
+  const double lod = memo ? (*memo)(footprint) : std::log2(footprint);
   if (lod >= top) return sample_level<periodic>(t, top, x, y);
   const int level = static_cast<int>(lod);
   const float blend = static_cast<float>(lod - level);
@@ -156,7 +157,7 @@ const cv::Vec3b kSky(235, 206, 160);
 // Colour of a hit. pixel_angle: the angular size of a pixel (radians), for mip selection; distance: along
 // the 3-D ray; cos_e: cosine of the ray's elevation; sin_e: its sine.
 cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, const RayRow& row,
-                double distance, double pixel_angle) {
+                double distance, double pixel_angle, Log2Memo* memo) {
   const double s = row.s;
   const SyntheticScene& scene = *ctx.scene;
   const SceneTextures& tex = *scene.textures;
@@ -176,14 +177,15 @@ cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, c
         const SceneFootprint& fp = scene.footprints[hit.footprint];
         const __m128 c =
             sample_pyramid<true>(tex.materials[kMaterialFurnitureTop], (p.x() + fp.texture_offset.x()) * tpm,
-                                 -(p.y() + fp.texture_offset.y()) * tpm, footprint);
+                                 -(p.y() + fp.texture_offset.y()) * tpm, footprint, memo);
         colour = _mm_mul_ps(_mm_mul_ps(c, vec(fp.tint)), _mm_set1_ps(0.97f));
       } else if (hit.kind == SurfaceKind::kFloor) {
         colour = _mm_mul_ps(
-            sample_pyramid<true>(tex.materials[kMaterialFloor], p.x() * tpm, -p.y() * tpm, footprint),
+            sample_pyramid<true>(tex.materials[kMaterialFloor], p.x() * tpm, -p.y() * tpm, footprint, memo),
             _mm_set1_ps(0.9f));
       } else {
-        colour = sample_pyramid<true>(tex.materials[kMaterialCeiling], p.x() * tpm, -p.y() * tpm, footprint);
+        colour =
+            sample_pyramid<true>(tex.materials[kMaterialCeiling], p.x() * tpm, -p.y() * tpm, footprint, memo);
       }
       break;
     }
