@@ -225,14 +225,6 @@ cv::Mat poster(cv::RNG& rng, int w, int h) {
   return img;
 }
 
-// A copy of `level` followed by one spare row, so that the sampler may load 4 bytes at any texel.
-cv::Mat padded(const cv::Mat& level) {
-  cv::Mat buffer(level.rows + 1, level.cols, level.type(), cv::Scalar::all(0));
-  cv::Mat out = buffer.rowRange(0, level.rows);
-  level.copyTo(out);
-  return out;
-}
-
 TexturePyramid pyramid(const cv::Mat& level0, bool periodic) {
   TexturePyramid p;
   p.levels.push_back(level0);
@@ -240,17 +232,15 @@ TexturePyramid pyramid(const cv::Mat& level0, bool periodic) {
     const cv::Mat& prev = p.levels.back();
     cv::Mat next;
     if (periodic) {
-      cv::Mat wrapped, down;
-      cv::copyMakeBorder(prev, wrapped, 4, 4, 4, 4, cv::BORDER_WRAP);
-      cv::pyrDown(wrapped, down);
+      cv::Mat padded, down;
+      cv::copyMakeBorder(prev, padded, 4, 4, 4, 4, cv::BORDER_WRAP);
+      cv::pyrDown(padded, down);
       next = down(cv::Rect(2, 2, prev.cols / 2, prev.rows / 2)).clone();
     } else {
       cv::pyrDown(prev, next, cv::Size(prev.cols / 2, prev.rows / 2));
     }
     p.levels.push_back(next);
   }
-  // Padded once built: filters given a view use the pixels around it as its border.
-  for (cv::Mat& level : p.levels) level = padded(level);
   return p;
 }
 

@@ -22,9 +22,7 @@ enum TextureMaterial : int {
 };
 
 struct TexturePyramid {
-  // CV_8UC3; level 0 is the full size, each next level half of it. Each is followed in memory by at least
-  // one readable byte (pyramids are built with a spare row): the sampler loads 4 bytes per texel.
-  std::vector<cv::Mat> levels;
+  std::vector<cv::Mat> levels;  // CV_8UC3; level 0 is the full size, each next level half of it
 };
 
 struct SceneTextures {

@@ -21,18 +21,22 @@ inline long long fast_floor(double x) {
   return x < static_cast<double>(i) ? i - 1 : i;
 }
 
-// A texel's three bytes and the next one (levels are padded: scene_textures.h), as 32 bits.
+// A texel's three bytes as the low 24 bits of a 4-byte load (the 4th byte is the next texel's or the next
+// row's, and is never used).
 inline __m128i load_texel(const uchar* p) {
   std::uint32_t v;
   std::memcpy(&v, p, sizeof v);
   return _mm_cvtsi32_si128(static_cast<int>(v));
 }
+// The same in an image's last row, whose last texel is loaded from one byte earlier and shifted down, so
+// that no load reaches past the image.
+inline __m128i load_texel_in_last_row(const uchar* row, int x, int last) {
+  const int back = x == last ? 1 : 0;
+  std::uint32_t v;
+  std::memcpy(&v, row + 3 * x - back, sizeof v);
+  return _mm_cvtsi32_si128(static_cast<int>(v >> (8 * back)));
+}
 
-// Bilinear sample at continuous texel coordinates of one level (texel (i, j) has its centre at
-// (i + 0.5, j + 0.5)), in fixed point: 8-bit weights. Per channel, with a and b the weights' complements,
-//   top = p00 * (256 - ax) + p01 * ax, bottom = p10 * (256 - ax) + p11 * ax,
-//   value = (top * (256 - ay) + bottom * ay) >> 16,
-// the first two as 16-bit multiply-adds, the last in float, exact: every term is an integer below 2^24.
 // The texel coordinates x and y shifted by half a texel, split into integer parts (floors) and 8-bit
 // fractions: both at once in double lanes while they fit an int comfortably, otherwise (far off, or NaN)
 // one by one in 64 bits. Both ways give the same numbers.
@@ -79,10 +83,20 @@ template <bool periodic>
   const __m128i zero = _mm_setzero_si128();
   // 16-bit lanes p0[k], p1[k] side by side; the weights (256 - ax, ax) in each pair.
   const __m128i weights = _mm_set1_epi32(((ax << 16) | (256 - ax)));
-  const __m128i top = _mm_madd_epi16(
-      _mm_unpacklo_epi8(_mm_unpacklo_epi8(load_texel(r0 + 3 * x0), load_texel(r0 + 3 * x1)), zero), weights);
-  const __m128i bottom = _mm_madd_epi16(
-      _mm_unpacklo_epi8(_mm_unpacklo_epi8(load_texel(r1 + 3 * x0), load_texel(r1 + 3 * x1)), zero), weights);
+  __m128i p00, p01, p10, p11;
+  if (y0 != h - 1 && y1 != h - 1) {
+    p00 = load_texel(r0 + 3 * x0);
+    p01 = load_texel(r0 + 3 * x1);
+    p10 = load_texel(r1 + 3 * x0);
+    p11 = load_texel(r1 + 3 * x1);
+  } else {
+    p00 = load_texel_in_last_row(r0, x0, w - 1);
+    p01 = load_texel_in_last_row(r0, x1, w - 1);
+    p10 = load_texel_in_last_row(r1, x0, w - 1);
+    p11 = load_texel_in_last_row(r1, x1, w - 1);
+  }
+  const __m128i top = _mm_madd_epi16(_mm_unpacklo_epi8(_mm_unpacklo_epi8(p00, p01), zero), weights);
+  const __m128i bottom = _mm_madd_epi16(_mm_unpacklo_epi8(_mm_unpacklo_epi8(p10, p11), zero), weights);
   const __m128 sum = _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(top), _mm_set1_ps(static_cast<float>(256 - ay))),
                                 _mm_mul_ps(_mm_cvtepi32_ps(bottom), _mm_set1_ps(static_cast<float>(ay))));
   return _mm_cvtepi32_ps(_mm_cvttps_epi32(_mm_mul_ps(sum, _mm_set1_ps(1.0f / 65536.0f))));  // >> 16
