@@ -148,6 +148,7 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
   run(cv::Range(0, tiles_x * tiles_y), stripes * 8, [&](const cv::Range& r) {
     ColumnRay own;  // a tilted pixel's own ray
     std::vector<int> candidates;
+    Log2Memo memo;
     for (int t = r.start; t < r.end; ++t) {
       const int u0 = (t % tiles_x) * kTileW, v0 = (t / tiles_x) * kTileH;
       const int u1 = std::min(w, u0 + kTileW), v1 = std::min(h, v0 + kTileH);
@@ -156,15 +157,17 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
         cv::Vec3b* rgb = out.rgb.ptr<cv::Vec3b>(v);
         float* depth = options.depth ? out.depth.ptr<float>(v) : nullptr;
         for (int u = u0; u < u1; ++u) {
-          const Eigen::Vector3d b_camera(row.cos_e * cos_a[u], -row.cos_e * sin_a[u], row.sin_e);
+          auto b_camera = [&] {
+            return Eigen::Vector3d(row.cos_e * cos_a[u], -row.cos_e * sin_a[u], row.sin_e);
+          };
           cv::Vec3b colour;
           double distance = 0.0;
           if (!tilted) {
             const Hit hit = first_hit(ctx, columns[u], row);
             distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d * row.sec_e;
-            colour = shade(ctx, columns[u], hit, row, distance, pixel_angle);
+            colour = shade(ctx, columns[u], hit, row, distance, pixel_angle, &memo);
           } else {
-            const Eigen::Vector3d d = world_from_camera * b_camera;
+            const Eigen::Vector3d d = world_from_camera * b_camera();
             const double horizontal = std::hypot(d.x(), d.y());
             Hit hit;
             if (horizontal < 1e-12) {
@@ -187,12 +190,13 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
               const RayRow tilted_row(d.z() / horizontal, horizontal, d.z());
               hit = first_hit(ctx, own, tilted_row);
               distance = hit.kind == SurfaceKind::kNone ? 0.0 : hit.d / horizontal;
-              colour = shade(ctx, own, hit, tilted_row, distance, pixel_angle);
+              colour = shade(ctx, own, hit, tilted_row, distance, pixel_angle, &memo);
             }
           }
           if (!solids.empty() && !row_solids[v].empty()) {
-            const Eigen::Vector3d b_level = tilted ? Eigen::Vector3d(level_from_camera * b_camera) : b_camera;
-            const RigHit near = hit_rig(row_solids[v], textures, b_camera, b_level, pixel_angle);
+            const Eigen::Vector3d b = b_camera();
+            const Eigen::Vector3d b_level = tilted ? Eigen::Vector3d(level_from_camera * b) : b;
+            const RigHit near = hit_rig(row_solids[v], textures, b, b_level, pixel_angle);
             if (near.kind != SurfaceKind::kNone && (distance == 0.0 || near.distance < distance)) {
               distance = near.distance;
               colour = to_bgr(near.colour * ctx.gain);

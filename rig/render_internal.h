@@ -129,7 +129,8 @@ struct Hit {
 };
 
 // The first surface met by the ray of slope s (= tan elevation) along the column.
-inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, const RayRow& row) {
+[[gnu::always_inline]] inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray,
+                                            const RayRow& row) {
   const double s = row.s;
   const double cam_z = ctx.cam_z;
   const double ceiling_z = ctx.scene->options.wall_height;
@@ -186,10 +187,25 @@ inline Hit first_hit(const FrameContext& ctx, const ColumnRay& ray, const RayRow
 Hit vertical_hit(const FrameContext& ctx, bool down, ColumnRay& ray, double* distance);
 
 // ---- texturing (surface_shading.cpp)
+// std::log2 of the last argument again: every floor (or ceiling) pixel of a level panorama row has the same
+// distance, so the same texture footprint, and the logarithm that picks its mip levels was a tenth of the
+// render. One per thread; the results are those of std::log2.
+struct Log2Memo {
+  double argument = std::numeric_limits<double>::quiet_NaN();
+  double value = 0.0;
+  double operator()(double x) {
+    if (!(x == argument)) {
+      argument = x;
+      value = std::log2(x);
+    }
+    return value;
+  }
+};
 // Colour of a hit, exposure gain included. pixel_angle: the angular size of a pixel (radians), for mip
-// selection; distance: along the 3-D ray.
+// selection; distance: along the 3-D ray. `memo` (optional) remembers the last horizontal surface's mip
+// level.
 cv::Vec3b shade(const FrameContext& ctx, const ColumnRay& ray, const Hit& hit, const RayRow& row,
-                double distance, double pixel_angle);
+                double distance, double pixel_angle, Log2Memo* memo = nullptr);
 // Trilinear sample of a pyramid at level-0 texel coordinates with a footprint of `footprint` texels.
 cv::Vec3f sample_texture(const TexturePyramid& t, double x, double y, double footprint, bool periodic);
 inline cv::Vec3b to_bgr(const cv::Vec3f& c) {

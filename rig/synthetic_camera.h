@@ -15,7 +15,10 @@
 // Speed: one 2-D ray cast per panorama column (through a uniform grid over the faces) collects the faces the
 // column can see, then every pixel of the column walks that short list with its own elevation; both passes
 // run on OpenCV's thread pool. A tilted camera (RenderOptions' pitch and roll) intersects each pixel's own
-// ray with the faces its two neighbouring columns collected. tests/bench/bench_render.cpp measures it.
+// ray with the faces its two neighbouring columns collected. Texturing is most of the cost: the trilinear
+// mip sampler runs on SSE2 lanes (exactly the scalar arithmetic), and a row's floor pixels share one log2.
+// tests/bench/bench_render.cpp measures it: 67-74 ms of CPU per 2048x1024 RGB + depth frame on one thread
+// (69af694, load 4 on 2 cores; 124-128 ms before, same run).
 //
 // What a real trolley capture has besides the scene (RenderOptions, all off by default): sensor noise,
 // exposure drift and sudden auto-exposure steps, people walking, pitch and roll wobble from an uneven floor,

@@ -6,17 +6,21 @@
 // `file` fields) first, then renders from that file as read back, so rendering again with
 // `--path DIR/groundtruth.json` reproduces every frame bit for bit. Frames go to DIR/frames/NNNNNN.jpg,
 // depth (--depth) to DIR/depth/NNNNNN.png (16-bit millimetres); with --rig, per-head images go to
-// DIR/heads/<head>/NNNNNN.jpg instead (stitch them with `plenopath stitch`).
+// DIR/heads/<head>/NNNNNN.jpg instead (stitch them with `plenopath stitch`). Frame i is encoded and written
+// on a background thread while frame i + 1 renders; the files are the same as written in turn.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "app/cli/command.h"
 #include "app/cli/console_progress.h"
 #include "app/cli/render_common.h"
 #include "model/error.h"
 #include "model/path_io.h"
+#include "processing/util/background_queue.h"
 #include "rig/multi_head_rig.h"
 #include "rig/synthetic_camera.h"
 
@@ -95,24 +99,35 @@ int run(const Options& o) {
   }
 
   ConsoleProgress progress("render", o.quiet);
-  RenderedPanorama pano;
+  // Frame i is encoded and written on a background thread while frame i + 1 renders. The writer may still
+  // hold capacity + 1 frames when a render starts, so the panoramas rotate through capacity + 2 buffers.
+  BackgroundQueue writer(2);
+  std::vector<RenderedPanorama> buffers(static_cast<std::size_t>(writer.capacity()) + 2);
   for (std::size_t i = 0; i < path.size(); ++i) {
     const PathFrame& pose = path.frames[i];
     if (rig) {
-      const std::vector<cv::Mat> heads = render_heads(scene, *rig, pose, render_options);
-      for (std::size_t h = 0; h < heads.size(); ++h)
-        write_image(
-            (fs::path(o.out) / "heads" / rig->heads[h].name / numbered_file_name(pose.index, "jpg")).string(),
-            heads[h], o.jpeg_quality);
+      std::vector<cv::Mat> heads = render_heads(scene, *rig, pose, render_options);
+      std::vector<std::string> files;
+      for (const auto& head : rig->heads)
+        files.push_back(
+            (fs::path(o.out) / "heads" / head.name / numbered_file_name(pose.index, "jpg")).string());
+      writer.submit([heads = std::move(heads), files = std::move(files), quality = o.jpeg_quality] {
+        for (std::size_t h = 0; h < heads.size(); ++h) write_image(files[h], heads[h], quality);
+      });
     } else {
+      RenderedPanorama& pano = buffers[i % buffers.size()];
       render_panorama(scene, pose, render_options, pano);
-      write_image((fs::path(o.out) / pose.file).string(), pano.rgb, o.jpeg_quality);
-      if (o.depth)
-        write_depth_png((fs::path(o.out) / "depth" / numbered_file_name(pose.index, "png")).string(),
-                        pano.depth);
+      const std::string frame_file = (fs::path(o.out) / pose.file).string();
+      const std::string depth_file =
+          o.depth ? (fs::path(o.out) / "depth" / numbered_file_name(pose.index, "png")).string() : "";
+      writer.submit([rgb = pano.rgb, depth = pano.depth, frame_file, depth_file, quality = o.jpeg_quality] {
+        write_image(frame_file, rgb, quality);
+        if (!depth_file.empty()) write_depth_png(depth_file, depth);
+      });
     }
     progress.frames(static_cast<int>(i + 1), static_cast<int>(path.size()));
   }
+  writer.finish();
   progress.finish();
   if (!o.quiet)
     std::cerr << "render: " << path.size() << " frames (" << path.length() << " m) in " << o.out
