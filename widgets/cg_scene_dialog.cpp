@@ -1,5 +1,6 @@
 #include "widgets/cg_scene_dialog.h"
 
+#include <QApplication>
 #include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
@@ -7,12 +8,19 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
+#include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QRadioButton>
 #include <QSpinBox>
 #include <QVBoxLayout>
+#include <cmath>
+
+#include "model/error.h"
+#include "processing/walk/walk_route.h"
+#include "rig/synthetic_camera.h"
+#include "widgets/map_view.h"
 
 namespace plenopath::widgets {
 
@@ -150,6 +158,8 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
       problem = tr("Choose the folder to write the capture into.");
     else if (waypoints_choice_->isChecked() && waypoints_->text().trimmed().isEmpty())
       problem = tr("Type the waypoints (X,Y X,Y … in metres), or render along the project's path.");
+    else if (path_file_choice_->isChecked() && !QFileInfo(path_file_->text().trimmed()).isFile())
+      problem = tr("Choose the path file to render along (%1 is no file).").arg(path_file_->text());
     if (!problem.isEmpty()) {
       QMessageBox::warning(this, tr("Render CG scene"), problem);
       return;
@@ -157,6 +167,154 @@ CgSceneDialog::CgSceneDialog(QWidget* parent, bool has_path, const QString& scen
     accept();
   });
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+
+  // The walk drawn on the plan or the automatic one (issue 23), under the Along row; then a path file.
+  draw_button_ = new QPushButton(tr("Draw on plan…"), this);
+  draw_button_->setObjectName("cg_draw_on_plan");
+  draw_button_->setToolTip(
+      tr("Click the waypoints on the map: Backspace removes the last, Enter or a double-click finishes, Esc "
+         "cancels"));
+  auto_walk_button_ = new QPushButton(tr("Auto walk"), this);
+  auto_walk_button_->setObjectName("cg_auto_walk");
+  auto_walk_button_->setToolTip(
+      tr("The studio's automatic walk through every room of the plan, as waypoints at its corners"));
+  waypoints_note_ = new QLabel(this);
+  waypoints_note_->setObjectName("cg_waypoints_note");
+  waypoints_->setObjectName("cg_waypoints");
+  path_file_choice_ = new QRadioButton(tr("Path file"), this);
+  path_file_choice_->setObjectName("cg_path_file_choice");
+  path_file_ = new QLineEdit(this);
+  path_file_->setObjectName("cg_path_file");
+  path_file_->setPlaceholderText(tr("path JSON (File > Import path reads the same)"));
+  path_file_button_ = new QPushButton(tr("File…"), this);
+  auto* draw_row = new QHBoxLayout;
+  draw_row->addWidget(draw_button_);
+  draw_row->addWidget(auto_walk_button_);
+  draw_row->addWidget(waypoints_note_, 1);
+  auto* file_row = new QHBoxLayout;
+  file_row->addWidget(path_file_choice_);
+  file_row->addWidget(path_file_, 1);
+  file_row->addWidget(path_file_button_);
+  int along_row = 0;
+  QFormLayout::ItemRole role;
+  form->getLayoutPosition(path_row, &along_row, &role);
+  form->insertRow(along_row + 1, QString(), draw_row);
+  form->insertRow(along_row + 2, QString(), file_row);
+  update_along();
+  for (QRadioButton* choice : {project_path_, waypoints_choice_, path_file_choice_})
+    connect(choice, &QRadioButton::toggled, this, &CgSceneDialog::update_along);
+  connect(waypoints_, &QLineEdit::textChanged, this, &CgSceneDialog::update_waypoints_note);
+  connect(draw_button_, &QPushButton::clicked, this, &CgSceneDialog::draw_on_plan);
+  connect(auto_walk_button_, &QPushButton::clicked, this, &CgSceneDialog::fill_auto_walk);
+  connect(path_file_button_, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, tr("Path file"), path_file_->text(),
+                                                   tr("Path files (*.json);;All files (*)"));
+    if (f.isEmpty()) return;
+    path_file_->setText(f);
+    path_file_choice_->setChecked(true);
+  });
+}
+
+void CgSceneDialog::update_along() {
+  const bool file = path_file_choice_->isChecked();
+  path_file_->setEnabled(file);
+  path_file_button_->setEnabled(file);
+  draw_button_->setEnabled(!map_.isNull());
+  auto_walk_button_->setEnabled(has_plan_);
+  auto_walk_button_->setToolTip(
+      has_plan_
+          ? tr("The studio's automatic walk through every room of the plan, as waypoints at its corners")
+          : tr("Import the floor plan first"));
+}
+
+void CgSceneDialog::set_map(MapView* map) {
+  if (map_) disconnect(map_, nullptr, this, nullptr);
+  map_ = map;
+  if (map_) {
+    connect(map_, &MapView::waypoints_drawn, this, [this](const std::vector<Eigen::Vector2d>& points) {
+      if (!drawing_) return;  // another dialog's drawing
+      set_waypoints(points);
+      back_from_map();
+    });
+    connect(map_, &MapView::waypoints_cancelled, this, [this] {
+      if (drawing_) back_from_map();
+    });
+  }
+  update_along();
+}
+
+void CgSceneDialog::set_plan(const FloorPlan& plan) {
+  plan_ = plan;
+  has_plan_ = !plan.empty();
+  update_along();
+  update_waypoints_note();
+}
+
+void CgSceneDialog::set_waypoints(const std::vector<Eigen::Vector2d>& points) {
+  waypoints_->setText(QString::fromStdString(waypoints_text(points)));
+  waypoints_->setCursorPosition(0);
+  waypoints_choice_->setChecked(true);
+}
+
+void CgSceneDialog::draw_on_plan() {
+  if (!map_) return;
+  drawing_ = true;
+  hide();  // window-modal: hidden, it lets the map have the clicks
+  if (QWidget* window = map_->window()) {
+    window->raise();
+    window->activateWindow();
+  }
+  map_->start_waypoint_drawing(
+      tr("Click the walk's waypoints\nBackspace removes the last  ·  Esc cancels\nEnter or a double-click "
+         "finishes"));
+}
+
+void CgSceneDialog::back_from_map() {
+  drawing_ = false;
+  show();
+  raise();
+  activateWindow();
+}
+
+void CgSceneDialog::fill_auto_walk() {
+  if (!has_plan_) return;
+  QApplication::setOverrideCursor(Qt::WaitCursor);
+  try {
+    AutoWalkOptions options;
+    options.frame_pattern.clear();
+    set_waypoints(path_corners(auto_walk(plan_, options), kAutoWalkTolerance));
+  } catch (const Error& e) {
+    QApplication::restoreOverrideCursor();
+    QMessageBox::warning(this, tr("Auto walk"), QString::fromStdString(e.what()));
+    return;
+  }
+  QApplication::restoreOverrideCursor();
+}
+
+void CgSceneDialog::update_waypoints_note() {
+  std::vector<Eigen::Vector2d> points;
+  try {
+    points = parse_waypoints(waypoints_->text().toStdString());
+  } catch (const Error& e) {
+    waypoints_note_->setStyleSheet("color: #c01f2a");
+    waypoints_note_->setText(QString::fromStdString(e.what()).remove("--waypoints: "));
+    return;
+  }
+  if (points.empty()) {
+    waypoints_note_->clear();
+    return;
+  }
+  double length = 0.0;
+  int crossing = 0;
+  const std::vector<PlanSegment> walls = has_plan_ ? plan_.occluder_segments() : std::vector<PlanSegment>{};
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    length += (points[k] - points[k - 1]).norm();
+    crossing += crosses_any_wall(walls, points[k - 1], points[k]);
+  }
+  QString text = tr("%n waypoint(s), %1 m", "", static_cast<int>(points.size())).arg(length, 0, 'f', 2);
+  if (crossing > 0) text += tr("; %n leg(s) cross a wall of the plan", "", crossing);
+  waypoints_note_->setStyleSheet(crossing > 0 ? "color: #c01f2a" : "");
+  waypoints_note_->setText(text);
 }
 
 CgSceneChoices CgSceneDialog::choices() const {
@@ -179,6 +337,7 @@ CgSceneChoices CgSceneDialog::choices() const {
   c.options.online_parameters.ratio = ratio_->value();
   c.options.online_loss_target = loss_target_->value();
   c.options.section_plan = section_->isChecked();
+  if (path_file_choice_->isChecked()) c.path_file = path_file_->text().trimmed().toStdString();
   return c;
 }
 

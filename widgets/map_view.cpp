@@ -29,6 +29,7 @@
 
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
+#include "processing/walk/walk_route.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/map_hotspot_markers.h"
 #include "widgets/map_pieces.h"
@@ -64,6 +65,7 @@ constexpr double kPathZ = 0.01;
 constexpr double kKeyframeZ = 0.02;
 constexpr double kResidualZ = 0.025;
 constexpr double kCurrentZ = 0.03;
+constexpr double kWaypointZ = 0.45;  // above the current-frame sphere too, under the anchors
 constexpr double kAnchorZ = 0.5;  // well above the current-frame sphere, whose depth bulges toward the camera
 
 // How close (pixels) a press must be to a frame or an anchor marker, and a plan corner to snap to.
@@ -223,6 +225,17 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   hotspot_actor_ = make_hotspot_marker_actor();  // hotspots at their 3-D position
   renderer_->AddActor(hotspot_actor_);
 
+  // Waypoint drawing: green legs (red across a wall), darker green waypoints, a fainter rubber band.
+  const double waypoint_green[3] = {0.0, 0.62, 0.38};
+  const double waypoint_dark[3] = {0.0, 0.38, 0.22};
+  waypoint_actor_ = make_actor(waypoint_green, 3.5);
+  waypoint_marker_actor_ = make_actor(waypoint_dark, 1.0);
+  waypoint_marker_actor_->GetProperty()->SetPointSize(10.0f);
+  waypoint_marker_actor_->GetProperty()->RenderPointsAsSpheresOn();
+  rubber_band_actor_ = make_actor(waypoint_green, 2.0, 0.6);
+  for (vtkActor* a : {waypoint_actor_.Get(), rubber_band_actor_.Get(), waypoint_marker_actor_.Get()})
+    renderer_->AddActor(a);
+
   caption_ = vtkSmartPointer<vtkTextActor>::New();
   caption_->GetTextProperty()->SetFontSize(14);
   caption_->GetTextProperty()->SetColor(0.2, 0.2, 0.25);
@@ -274,6 +287,29 @@ void MapView::on_document_changed(unsigned flags) {
   if (flags & (kPathChanged | kVisibilityChanged | kCaptureChanged)) rebuild_path();
   if (flags & (kPathChanged | kKeyframesChanged)) rebuild_keyframes();
   if (flags & (kPathChanged | kAnchorsChanged)) rebuild_anchors(drawn_path_, document_.project().anchors);
+  if (drawing_waypoints_ && (flags & kPlanChanged)) {
+    waypoint_walls_ = document_.project().plan.occluder_segments();
+    rebuild_waypoints();
+  }
+  update_hint();
+  if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
+  rebuild_current();
+  if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
+  request_render();
+}
+
+void MapView::update_hint() {
+  vtkTextProperty* text = hint_->GetTextProperty();
+  if (drawing_waypoints_) {
+    text->SetFontSize(14);
+    text->SetBold(true);
+    text->SetColor(0.0, 0.38, 0.22);
+    hint_->SetInput(waypoint_hint_.toStdString().c_str());
+    return;
+  }
+  text->SetFontSize(12);
+  text->SetBold(false);
+  text->SetColor(0.45, 0.45, 0.5);
   int unplaced = 0;
   for (int k = 0; k < document_.project().path.piece_count(); ++k)
     unplaced += !document_.project().path.piece_placed(k);
@@ -285,10 +321,6 @@ void MapView::on_document_changed(unsigned flags) {
                 .c_str()
           : "Ctrl+drag a frame: anchor it where it really was  ·  + Shift: snap to a plan corner  ·  "
             "drag an anchor to move it");
-  if (flags & kHotspotsChanged) update_hotspot_markers(hotspot_actor_, document_.project());
-  rebuild_current();
-  if ((flags & (kPlanChanged | kPathChanged)) && (flags & kPlanChanged || !camera_fitted_)) reset_camera();
-  request_render();
 }
 
 void MapView::rebuild_plan() {
@@ -471,7 +503,7 @@ void MapView::rebuild_current() {
   set_polydata(current_actor_, marker);
   set_polydata(cone_actor_, cone);
   set_polydata(envelope_actor_, envelope);
-  caption_->SetInput(caption.c_str());
+  if (!drawing_waypoints_) caption_->SetInput(caption.c_str());  // while drawing: the waypoints' caption
 }
 
 void MapView::reset_camera() {
@@ -525,6 +557,7 @@ QPoint MapView::widget_pixel_of(const Eigen::Vector2d& plan_point) {
 }
 
 void MapView::start_point_pick(const QString& hint) {
+  cancel_waypoint_drawing();
   picking_point_ = true;
   setCursor(Qt::CrossCursor);
   setFocus();
@@ -539,12 +572,19 @@ void MapView::cancel_point_pick() {
 }
 
 bool MapView::event(QEvent* e) {
+  // The release that ends a double-click (which finished a waypoint drawing) is no click.
+  if (swallow_release_ && e->type() == QEvent::MouseButtonPress) swallow_release_ = false;
+  if (swallow_release_ && e->type() == QEvent::MouseButtonRelease) {
+    swallow_release_ = false;
+    return QVTKOpenGLNativeWidget::event(e);  // ends VTK's pan, if any
+  }
+  if (drawing_waypoints_ && handle_waypoint_event(e)) return true;
   if (picking_point_ && e->type() == QEvent::KeyPress &&
       static_cast<QKeyEvent*>(e)->key() == Qt::Key_Escape) {
     cancel_point_pick();
     return true;
   }
-  if (!picking_point_ && handle_anchor_event(e)) {
+  if (!picking_point_ && !drawing_waypoints_ && handle_anchor_event(e)) {
     e->accept();
     return true;
   }
@@ -818,6 +858,186 @@ void MapView::end_anchor_drag(bool apply) {
   set_path_geometry(document_.project().path);
   rebuild_anchors(drawn_path_, document_.project().anchors);
   rebuild_current();
+  request_render();
+}
+
+void MapView::start_waypoint_drawing(const QString& hint) {
+  cancel_point_pick();
+  if (drag_.active) end_anchor_drag(false);
+  drawing_waypoints_ = true;
+  swallow_release_ = false;
+  waypoint_hint_ = hint;
+  waypoints_.clear();
+  waypoint_leg_crosses_.clear();
+  waypoint_walls_ = document_.project().plan.occluder_segments();
+  cursor_on_map_ = false;
+  setMouseTracking(true);  // the rubber band follows the cursor
+  setCursor(Qt::CrossCursor);
+  setFocus();
+  update_hint();
+  rebuild_waypoints();
+  emit message(QString(hint).replace('\n', "  ·  "));  // the hint's lines on one
+}
+
+void MapView::cancel_waypoint_drawing() {
+  if (!drawing_waypoints_) return;
+  end_waypoint_drawing();
+  emit message(tr("Waypoint drawing cancelled"));
+  emit waypoints_cancelled();
+}
+
+int MapView::waypoint_legs_crossing_walls() const {
+  return static_cast<int>(std::count(waypoint_leg_crosses_.begin(), waypoint_leg_crosses_.end(), 1));
+}
+
+void MapView::finish_waypoint_drawing() {
+  if (waypoints_.size() < 2) {
+    emit message(tr("Two waypoints at least: click another, or Esc to cancel"));
+    return;
+  }
+  const std::vector<Eigen::Vector2d> waypoints = waypoints_;
+  double length = 0.0;
+  for (std::size_t k = 1; k < waypoints.size(); ++k) length += (waypoints[k] - waypoints[k - 1]).norm();
+  const int crossing = waypoint_legs_crossing_walls();
+  end_waypoint_drawing();
+  QString text =
+      tr("%n waypoint(s) drawn, %1 m", "", static_cast<int>(waypoints.size())).arg(length, 0, 'f', 2);
+  if (crossing > 0) text += tr(" (%n leg(s) cross a wall)", "", crossing);
+  emit message(text);
+  emit waypoints_drawn(waypoints);
+}
+
+void MapView::end_waypoint_drawing() {
+  drawing_waypoints_ = false;
+  waypoints_.clear();
+  waypoint_leg_crosses_.clear();
+  waypoint_walls_.clear();
+  setMouseTracking(false);
+  unsetCursor();
+  update_hint();
+  rebuild_waypoints();
+  rebuild_current();  // the frame's caption again
+  request_render();
+}
+
+bool MapView::handle_waypoint_event(QEvent* e) {
+  switch (e->type()) {
+    case QEvent::ShortcutOverride:
+    case QEvent::KeyPress: {
+      auto* k = static_cast<QKeyEvent*>(e);
+      const int key = k->key();
+      if (key != Qt::Key_Escape && key != Qt::Key_Backspace && key != Qt::Key_Return && key != Qt::Key_Enter)
+        return false;
+      e->accept();  // an override: the key comes here as a KeyPress, not to a menu shortcut
+      if (e->type() == QEvent::ShortcutOverride) return true;
+      if (key == Qt::Key_Escape) {
+        cancel_waypoint_drawing();
+      } else if (key == Qt::Key_Backspace) {
+        if (!waypoints_.empty()) {
+          waypoints_.pop_back();
+          if (!waypoint_leg_crosses_.empty()) waypoint_leg_crosses_.pop_back();
+          rebuild_waypoints();
+          emit message(tr("%n waypoint(s) left", "", static_cast<int>(waypoints_.size())));
+        }
+      } else {
+        finish_waypoint_drawing();
+      }
+      return true;
+    }
+    case QEvent::MouseButtonDblClick: {
+      if (static_cast<QMouseEvent*>(e)->button() != Qt::LeftButton) return false;
+      // The double-click's first click added its waypoint already; its second release adds none.
+      swallow_release_ = true;
+      finish_waypoint_drawing();
+      return true;
+    }
+    case QEvent::MouseMove: {
+      cursor_on_map_ = true;
+      cursor_ = plan_point_at(static_cast<QMouseEvent*>(e)->pos());
+      rebuild_waypoints();
+      return false;  // a drag still pans
+    }
+    case QEvent::Leave:
+      cursor_on_map_ = false;
+      rebuild_waypoints();
+      return false;
+    case QEvent::MouseButtonRelease: {
+      auto* m = static_cast<QMouseEvent*>(e);
+      if (m->button() != Qt::LeftButton) return false;
+      if ((m->pos() - press_pixel_).manhattanLength() > 4) return false;  // a drag: panned
+      QVTKOpenGLNativeWidget::event(e);
+      const Eigen::Vector2d q = plan_point_at(m->pos());
+      if (!waypoints_.empty() && (q - waypoints_.back()).norm() < 1e-6) return true;
+      if (!waypoints_.empty())
+        waypoint_leg_crosses_.push_back(crosses_any_wall(waypoint_walls_, waypoints_.back(), q) ? 1 : 0);
+      waypoints_.push_back(q);
+      cursor_ = q;
+      rebuild_waypoints();
+      QString text =
+          tr("Waypoint %1 at (%2, %3) m").arg(waypoints_.size()).arg(q.x(), 0, 'f', 2).arg(q.y(), 0, 'f', 2);
+      if (!waypoint_leg_crosses_.empty() && waypoint_leg_crosses_.back())
+        text += tr(" — this leg crosses a wall");
+      emit message(text + tr(" · Backspace removes it, Enter or a double-click finishes, Esc cancels"));
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+void MapView::rebuild_waypoints() {
+  vtkNew<vtkPoints> points, band_points;
+  vtkNew<vtkCellArray> lines, verts, band;
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  const std::array<unsigned char, 3> green{0, 158, 97}, red{220, 30, 40};
+  for (const Eigen::Vector2d& p : waypoints_) {
+    const vtkIdType id = points->InsertNextPoint(p.x(), p.y(), kWaypointZ);
+    verts->InsertNextCell(1, &id);
+  }
+  for (std::size_t k = 0; k + 1 < waypoints_.size(); ++k) {
+    const vtkIdType ids[2] = {static_cast<vtkIdType>(k), static_cast<vtkIdType>(k + 1)};
+    lines->InsertNextCell(2, ids);
+    const bool crosses = k < waypoint_leg_crosses_.size() && waypoint_leg_crosses_[k];
+    colours->InsertNextTypedTuple((crosses ? red : green).data());
+  }
+  bool band_crosses = false;
+  if (drawing_waypoints_ && cursor_on_map_ && !waypoints_.empty()) {
+    band_crosses = crosses_any_wall(waypoint_walls_, waypoints_.back(), cursor_);
+    const vtkIdType ids[2] = {
+        band_points->InsertNextPoint(waypoints_.back().x(), waypoints_.back().y(), kWaypointZ),
+        band_points->InsertNextPoint(cursor_.x(), cursor_.y(), kWaypointZ)};
+    band->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> legs, markers, rubber;
+  legs->SetPoints(points);
+  legs->SetLines(lines);
+  legs->GetCellData()->SetScalars(colours);
+  markers->SetPoints(points);
+  markers->SetVerts(verts);
+  rubber->SetPoints(band_points);
+  rubber->SetLines(band);
+  set_polydata(waypoint_actor_, legs);
+  set_polydata(waypoint_marker_actor_, markers);
+  set_polydata(rubber_band_actor_, rubber);
+  rubber_band_actor_->GetProperty()->SetColor(band_crosses ? 0.86 : 0.0, band_crosses ? 0.12 : 0.62,
+                                              band_crosses ? 0.16 : 0.38);
+  if (drawing_waypoints_) {
+    double length = 0.0;
+    for (std::size_t k = 1; k < waypoints_.size(); ++k) length += (waypoints_[k] - waypoints_[k - 1]).norm();
+    char text[200];
+    std::snprintf(text, sizeof text, "%d waypoint%s  ·  %.2f m", static_cast<int>(waypoints_.size()),
+                  waypoints_.size() == 1 ? "" : "s", length);
+    std::string caption = text;
+    if (cursor_on_map_) {
+      std::snprintf(text, sizeof text, "  ·  cursor (%.2f, %.2f) m", cursor_.x(), cursor_.y());
+      caption += text;
+    }
+    if (const int crossing = waypoint_legs_crossing_walls(); crossing > 0)
+      caption +=
+          "  ·  " + std::to_string(crossing) + (crossing == 1 ? " leg crosses" : " legs cross") + " a wall";
+    caption_->SetInput(caption.c_str());
+  }
   request_render();
 }
 

@@ -13,8 +13,12 @@
 // violet lines with their rank and score; a click on one asks for it (placement_clicked).
 // Point picking (Process > Place still on plan): after start_point_pick the next plain click anywhere on
 // the map gives its plan point (point_picked) instead of going to a frame; Esc gives up
-// (point_pick_cancelled). Renders are requested and coalesced (one per event-loop turn), never forced by the
-// model.
+// (point_pick_cancelled).
+// Waypoint drawing (Process > Render CG scene, Draw on plan): after start_waypoint_drawing each plain click
+// adds a waypoint, drawn as a green polyline with a rubber band to the cursor (legs that cross a wall of the
+// plan in red); Backspace removes the last, Enter or a double-click finishes (waypoints_drawn), Esc cancels
+// (waypoints_cancelled). A left drag still pans, the wheel still zooms. Renders are requested and
+// coalesced (one per event-loop turn), never forced by the model.
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -27,6 +31,7 @@
 
 #include "model/anchors.h"
 #include "model/camera_path.h"
+#include "model/floor_plan.h"
 
 class QTimer;
 class vtkActor;
@@ -84,6 +89,16 @@ class MapView : public QVTKOpenGLNativeWidget {
   void cancel_point_pick();
   bool is_picking_point() const { return picking_point_; }
 
+  // Waypoint drawing (see above); `hint` goes to the top of the map (its lines as they are) and to the
+  // status bar (on one line).
+  void start_waypoint_drawing(const QString& hint);
+  void cancel_waypoint_drawing();
+  bool is_drawing_waypoints() const { return drawing_waypoints_; }
+  // The waypoints clicked so far (plan metres).
+  const std::vector<Eigen::Vector2d>& drawn_waypoints() const { return waypoints_; }
+  // How many legs of the waypoints so far cross a sight-blocking segment of the plan.
+  int waypoint_legs_crossing_walls() const;
+
   // Index into placement_ghosts() of the ghost nearest `pixel` within `radius_px`, or -1.
   int placement_ghost_near(const QPoint& pixel, double radius_px);
 
@@ -97,6 +112,9 @@ class MapView : public QVTKOpenGLNativeWidget {
   // Point picking: the plan point clicked (metres), or Esc.
   void point_picked(double x, double y);
   void point_pick_cancelled();
+  // Waypoint drawing: finished with these waypoints (two or more, plan metres), or cancelled.
+  void waypoints_drawn(const std::vector<Eigen::Vector2d>& waypoints);
+  void waypoints_cancelled();
 
  protected:
   bool event(QEvent* event) override;
@@ -120,6 +138,13 @@ class MapView : public QVTKOpenGLNativeWidget {
   bool handle_anchor_event(QEvent* event);
   void update_anchor_drag(const QPoint& pixel, bool snap);
   void end_anchor_drag(bool apply);
+  // The hint at the top of the map (anchoring, pieces, or the waypoint drawing's keys).
+  void update_hint();
+  // Returns true when the event belonged to waypoint drawing (clicks, keys, the rubber band).
+  bool handle_waypoint_event(QEvent* event);
+  void finish_waypoint_drawing();
+  void end_waypoint_drawing();
+  void rebuild_waypoints();
 
   // An anchor drag in progress.
   struct AnchorDrag {
@@ -163,6 +188,18 @@ class MapView : public QVTKOpenGLNativeWidget {
   QPoint press_pixel_;
   bool picking_point_ = false;
   bool camera_fitted_ = false;
+  // Waypoint drawing.
+  bool drawing_waypoints_ = false;
+  bool swallow_release_ = false;  // the release that ends a double-click is no click
+  QString waypoint_hint_;
+  std::vector<Eigen::Vector2d> waypoints_;
+  std::vector<char> waypoint_leg_crosses_;   // per leg: it crosses a wall
+  std::vector<PlanSegment> waypoint_walls_;  // the plan's sight-blocking segments, while drawing
+  bool cursor_on_map_ = false;
+  Eigen::Vector2d cursor_ = Eigen::Vector2d::Zero();  // plan point under the cursor, while drawing
+  vtkSmartPointer<vtkActor> waypoint_actor_;          // the legs (coloured: green, red across a wall)
+  vtkSmartPointer<vtkActor> waypoint_marker_actor_;   // the waypoints
+  vtkSmartPointer<vtkActor> rubber_band_actor_;       // from the last waypoint to the cursor
 };
 
 // Colour (RGB 0..255) of visibility cell `cell` (a small qualitative palette, cycled; -1 = no cell).

@@ -109,15 +109,30 @@ RenderCgSceneReaction::RenderCgSceneReaction(QAction* action, MainWindow& window
 void RenderCgSceneReaction::update_enabled() { action()->setEnabled(!window_.tasks().is_running()); }
 
 void RenderCgSceneReaction::on_triggered() {
-  const Project& p = window_.document().project();
-  widgets::CgSceneDialog dialog(&window_, p.path.size() >= 2);
-  if (dialog.exec() != QDialog::Accepted) return;
-  if (!p.capture.empty() &&
-      QMessageBox::question(&window_, QObject::tr("Render CG scene"),
-                            QObject::tr("Replace the project's capture and path with the rendered frames and "
-                                        "their poses? (Undo brings the old ones back.)")) != QMessageBox::Yes)
+  if (dialog_) {  // already open (or hidden while its waypoints are drawn on the map)
+    if (dialog_->isVisible()) {
+      dialog_->raise();
+      dialog_->activateWindow();
+    }
     return;
-  window_.tasks().start(QObject::tr("Render CG scene"), render_cg_scene_task(dialog.choices()));
+  }
+  const Project& p = window_.document().project();
+  // Window-modal and opened, not exec()'d: Draw on plan hides it while the map takes the clicks.
+  dialog_ = new widgets::CgSceneDialog(&window_, p.path.size() >= 2);
+  dialog_->setAttribute(Qt::WA_DeleteOnClose);
+  dialog_->set_map(window_.map_view());
+  dialog_->set_plan(p.plan);
+  connect(dialog_, &QDialog::accepted, this, [this, dialog = dialog_.data()] {
+    const widgets::CgSceneChoices choices = dialog->choices();
+    if (!window_.document().project().capture.empty() &&
+        QMessageBox::question(&window_, QObject::tr("Render CG scene"),
+                              QObject::tr("Replace the project's capture and path with the rendered frames "
+                                          "and their poses? (Undo brings the old ones back.)")) !=
+            QMessageBox::Yes)
+      return;
+    window_.tasks().start(QObject::tr("Render CG scene"), render_cg_scene_task(choices));
+  });
+  dialog_->open();
 }
 
 ComputeVisibilityReaction::ComputeVisibilityReaction(QAction* action, MainWindow& window)

@@ -2,7 +2,10 @@
 // One small class per user action (ParaView's pqReaction habit): each owns what its QAction does, so the
 // main window only builds menus and docks.
 #include <QObject>
+#include <QPointer>
 #include <QStringList>
+
+#include "widgets/cg_scene_dialog.h"
 
 class QAction;
 class QMenu;
@@ -69,8 +72,9 @@ class ImportPathReaction : public Reaction {
   void on_triggered() override;
 };
 
-// Process > Render CG scene: the CG scene dialog, then the render as a task (progress per frame, Cancel
-// kills POV-Ray); the frames become the capture and their true poses the path, one undo step.
+// Process > Render CG scene: the CG scene dialog (window-modal; its waypoints can be drawn on the map or
+// be the automatic walk), then the render as a task (progress per frame, Cancel kills POV-Ray); the frames
+// become the capture and their true poses the path, one undo step.
 class RenderCgSceneReaction : public Reaction {
  public:
   RenderCgSceneReaction(QAction* action, MainWindow& window);
@@ -78,6 +82,7 @@ class RenderCgSceneReaction : public Reaction {
 
  private:
   void update_enabled();
+  QPointer<widgets::CgSceneDialog> dialog_;
 };
 
 class ComputeVisibilityReaction : public Reaction {

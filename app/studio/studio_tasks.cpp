@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "model/error.h"
+#include "model/path_io.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/gps_track.h"
@@ -71,10 +72,12 @@ widgets::TaskFunction import_capture_task(const widgets::CaptureImportChoices& c
 
 widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choices) {
   return [choices](Project project, Progress& progress) {
-    const CameraPath along =
-        choices.use_project_path ? project.path : walk_waypoints(choices.waypoints, choices.step_m);
+    const CameraPath along = choices.use_project_path     ? project.path
+                             : !choices.path_file.empty() ? read_path_file(choices.path_file)
+                                                          : walk_waypoints(choices.waypoints, choices.step_m);
     if (along.empty())
       throw Error("there is no path to render along: track or import one, or type waypoints");
+    require_placed(along, "render CG scene");  // an unplaced piece has no plan positions to render at
     SubProgress rendering(progress, 0.0, 0.95, "rendering " + choices.scene);
     const CgCaptureResult rendered =
         render_cg_capture(choices.scene, along, choices.options, choices.out_dir, rendering);

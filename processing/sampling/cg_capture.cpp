@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -18,9 +19,7 @@ namespace plenopath {
 
 namespace fs = std::filesystem;
 
-// "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
-// along the path (the direction over the half metre around it, so corners turn smoothly).
-CameraPath walk_waypoints(const std::string& text, double step) {
+std::vector<Eigen::Vector2d> parse_waypoints(const std::string& text) {
   std::vector<Eigen::Vector2d> points;
   std::stringstream in(text);
   std::string item;
@@ -32,6 +31,13 @@ CameraPath walk_waypoints(const std::string& text, double step) {
       throw Error("--waypoints: '" + item + "' is not X,Y (metres)");
     if (points.empty() || (points.back() - Eigen::Vector2d(x, y)).norm() > 1e-9) points.emplace_back(x, y);
   }
+  return points;
+}
+
+// A frame every `step` metres along the polyline, each facing along the path (the direction over the half
+// metre around it, so corners turn smoothly).
+CameraPath walk_waypoints(const std::string& text, double step) {
+  const std::vector<Eigen::Vector2d> points = parse_waypoints(text);
   if (points.size() < 2) throw Error("--waypoints needs two distinct points or more");
   if (!(step > 0)) throw Error("--step must be > 0");
   std::vector<double> along = {0.0};
@@ -57,6 +63,56 @@ CameraPath walk_waypoints(const std::string& text, double step) {
     path.frames.push_back(f);
   }
   return path;
+}
+
+std::string waypoints_text(const std::vector<Eigen::Vector2d>& points) {
+  std::string text;
+  char item[64];
+  for (const Eigen::Vector2d& p : points) {
+    // Two decimals; a coordinate that rounds to zero is written 0.00, never -0.00.
+    const double x = std::round(p.x() * 100.0) / 100.0 + 0.0, y = std::round(p.y() * 100.0) / 100.0 + 0.0;
+    std::snprintf(item, sizeof item, "%s%.2f,%.2f", text.empty() ? "" : " ", x, y);
+    text += item;
+  }
+  return text;
+}
+
+std::vector<Eigen::Vector2d> path_corners(const CameraPath& path, double tolerance) {
+  if (!(tolerance > 0)) throw Error("path_corners: the tolerance must be > 0 metres");
+  const std::size_t n = path.frames.size();
+  if (n < 3) {
+    std::vector<Eigen::Vector2d> all;
+    for (const PathFrame& f : path.frames) all.push_back(f.position());
+    return all;
+  }
+  // Douglas-Peucker without recursion (a walk has thousands of frames): split a span at its farthest
+  // frame from the chord while that frame is farther than the tolerance.
+  std::vector<char> keep(n, 0);
+  keep.front() = keep.back() = 1;
+  std::vector<std::pair<std::size_t, std::size_t>> spans{{0, n - 1}};
+  while (!spans.empty()) {
+    const auto [first, last] = spans.back();
+    spans.pop_back();
+    const Eigen::Vector2d a = path.frames[first].position(), b = path.frames[last].position();
+    const Eigen::Vector2d ab = b - a;
+    double farthest = -1.0;
+    std::size_t at = first;
+    for (std::size_t i = first + 1; i < last; ++i) {
+      const Eigen::Vector2d p = path.frames[i].position();
+      // Distance to the segment a-b (to a when a and b coincide, as at the ends of a loop).
+      const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double d = (a + t * ab - p).norm();
+      if (d > farthest) farthest = d, at = i;
+    }
+    if (farthest <= tolerance) continue;
+    keep[at] = 1;
+    spans.emplace_back(first, at);
+    spans.emplace_back(at, last);
+  }
+  std::vector<Eigen::Vector2d> corners;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) corners.push_back(path.frames[i].position());
+  return corners;
 }
 
 void CgCaptureOptions::check() const {

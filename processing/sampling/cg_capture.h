@@ -6,7 +6,9 @@
 // Every frame, or online (online_sampling.h): the whole path as coarse depth, full frames only for the
 // keyframes, which are then the capture (DIR/online_sampling.json says what was rendered at each size).
 // The command line's render-scene and the studio's Process > Render CG scene both call it.
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "model/camera_path.h"
 #include "model/keyframes.h"
@@ -45,9 +47,21 @@ struct CgCaptureResult {
   double seconds_coarse = 0.0, seconds_total = 0.0;
 };
 
+// "X,Y X,Y ..." (metres, plan frame): the points, repeats dropped. Throws Error naming an item that is not
+// X,Y.
+std::vector<Eigen::Vector2d> parse_waypoints(const std::string& text);
+
 // "X,Y X,Y ..." (metres, plan frame): a walk along the polyline, a frame every `step` metres, each facing
 // along the path (the direction over the half metre around it, so corners turn smoothly). Throws Error.
 CameraPath walk_waypoints(const std::string& text, double step);
+
+// The waypoints as walk_waypoints reads them: "X,Y X,Y ..." in metres with two decimals.
+std::string waypoints_text(const std::vector<Eigen::Vector2d>& points);
+
+// A path's positions thinned to its corners (Douglas-Peucker): every frame lies within `tolerance` metres
+// of the polyline through the points kept; the first and last frames are kept. The frames are taken in
+// order as one polyline (pieces are not told apart). Throws Error when tolerance is not > 0.
+std::vector<Eigen::Vector2d> path_corners(const CameraPath& path, double tolerance);
 
 // Throws Error (POV-Ray's or Blender's own messages included) or Cancelled; `out_dir` is created, and a
 // cancelled or failed run leaves what it wrote so far (without its work folder).

@@ -1,21 +1,31 @@
 // Process > Render CG scene: the author's POV-Ray scene rendered along waypoints becomes the project's
 // capture and its true poses the path, as one undo step; online, only the keyframes are rendered and the
 // path is theirs, numbered as the capture's frames. The dialog's choices map to the render's options.
+// The walk is drawn on the map with real clicks (Backspace, Enter, a double-click, Esc), or is the
+// studio's automatic walk thinned to its corners, or is a path file.
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QCheckBox>
 #include <QDoubleSpinBox>
+#include <QLabel>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QRadioButton>
 #include <QSpinBox>
 #include <QTest>
 #include <QUndoStack>
+#include <QWheelEvent>
 #include <filesystem>
 #include <fstream>
 
 #include "app/studio/studio_tasks.h"
+#include "model/path_io.h"
+#include "processing/visibility/visibility.h"
+#include "rig/synthetic_camera.h"
 #include "tests/widgets/test_studio.h"
 #include "widgets/cg_scene_dialog.h"
+#include "widgets/map_view.h"
 #include "widgets/project_document.h"
 #include "widgets/task_runner.h"
 
@@ -202,6 +212,277 @@ TEST(CgScene, DialogTakesABlenderScene) {
   EXPECT_DOUBLE_EQ(c.options.blender.camera_height_m, 1.6);
   EXPECT_TRUE(c.options.blender.depth);
   EXPECT_DOUBLE_EQ(c.options.blender.units_per_metre, 0.0);  // the scene's own
+}
+
+// The studio on the office sample plan with Process > Render CG scene open.
+struct StudioWithDialog {
+  test::TestStudio s;
+  widgets::CgSceneDialog* dialog = nullptr;
+  widgets::MapView* map = nullptr;
+  explicit StudioWithDialog(bool plan = true) {
+    Project start;
+    if (plan) start.plan = make_office_sample_plan();
+    s.window.document().reset(start, QString());
+    map = s.window.map_view();
+    QAction* render = s.window.findChild<QAction*>("render_cg_scene");
+    EXPECT_NE(render, nullptr);
+    render->trigger();
+    dialog = s.window.findChild<widgets::CgSceneDialog*>();
+    EXPECT_NE(dialog, nullptr);
+    EXPECT_TRUE(QTest::qWaitForWindowExposed(dialog));
+  }
+  QLineEdit* waypoints() const { return dialog->findChild<QLineEdit*>("cg_waypoints"); }
+  QPushButton* button(const char* name) const { return dialog->findChild<QPushButton*>(name); }
+  void click_on_plan(const Eigen::Vector2d& p) const {
+    const QPoint pixel = map->widget_pixel_of(p);
+    ASSERT_TRUE(map->rect().contains(pixel)) << p.transpose();
+    QTest::mouseClick(map, Qt::LeftButton, Qt::NoModifier, pixel);
+  }
+  // Metres per pixel of the map (from two pixels 100 apart).
+  double metres_per_pixel() const {
+    const QPoint c = map->rect().center();
+    return (map->plan_point_at(c + QPoint(100, 0)) - map->plan_point_at(c)).norm() / 100.0;
+  }
+};
+
+// Distance from p to the polyline through the path's frames (brute force).
+double distance_to_path(const Eigen::Vector2d& p, const CameraPath& path) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const Eigen::Vector2d a = path.frames[k].position(), ab = path.frames[k + 1].position() - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * ab - p).norm());
+  }
+  return best;
+}
+
+TEST(CgScene, WaypointsClickedOnThePlanFillTheDialog) {
+  StudioWithDialog d;
+  ASSERT_NE(d.waypoints(), nullptr);
+  ASSERT_TRUE(d.button("cg_draw_on_plan")->isEnabled());
+  QTest::mouseClick(d.button("cg_draw_on_plan"), Qt::LeftButton);
+  EXPECT_FALSE(d.dialog->isVisible());
+  ASSERT_TRUE(d.map->is_drawing_waypoints());
+  // Zoom in with the wheel (it still zooms while drawing) until a pixel is well under a centimetre.
+  d.map->render_now();
+  const double before = d.metres_per_pixel();
+  for (int k = 0; k < 20 && d.metres_per_pixel() > 0.006; ++k) {
+    const QPoint centre = d.map->rect().center();
+    QWheelEvent wheel(QPointF(centre), QPointF(d.map->mapToGlobal(centre)), QPoint(), QPoint(0, 120),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(d.map, &wheel);
+    d.map->render_now();
+  }
+  ASSERT_LT(d.metres_per_pixel(), 0.006) << "the wheel did not zoom: " << before;
+  // Waypoints about the middle of the view (the plan's middle: the corridor, y 6.5 .. 8.5), at fractions
+  // of the half view.
+  const QRect r = d.map->rect();
+  const Eigen::Vector2d c = d.map->plan_point_at(r.center());
+  const Eigen::Vector2d half =
+      0.5 * (d.map->plan_point_at(r.topRight()) - d.map->plan_point_at(r.bottomLeft())).cwiseAbs();
+  const auto at = [&](double fx, double fy) {
+    return Eigen::Vector2d(c + half.cwiseProduct(Eigen::Vector2d(fx, fy)));
+  };
+  const std::vector<Eigen::Vector2d> clicked = {at(-0.8, 0.1), at(-0.25, -0.3), at(0.2, 0.45), at(0.6, -0.1)};
+  d.click_on_plan(clicked[0]);
+  d.click_on_plan(clicked[1]);
+  d.click_on_plan(clicked[2]);
+  EXPECT_EQ(d.map->drawn_waypoints().size(), 3u);
+  QTest::keyClick(d.map, Qt::Key_Backspace);  // the third goes
+  EXPECT_EQ(d.map->drawn_waypoints().size(), 2u);
+  d.click_on_plan(clicked[3]);
+  // The cursor a little beyond the last waypoint: the rubber band follows it.
+  const QPoint cursor = d.map->widget_pixel_of(at(0.9, 0.5));
+  QMouseEvent move(QEvent::MouseMove, cursor, d.map->mapToGlobal(cursor), Qt::NoButton, Qt::NoButton,
+                   Qt::NoModifier);
+  QApplication::sendEvent(d.map, &move);
+  QTest::qWait(50);
+  d.map->render_now();
+  // The legs are drawn in green on the map: look at the middle of each.
+  const QImage shot = d.s.window.grab().toImage();
+  if (qEnvironmentVariableIsSet("PLENOPATH_TEST_SAVE")) shot.save("/tmp/cg_waypoints_drawing.png");
+  const auto green = [](QRgb p) { return qGreen(p) > 120 && qRed(p) < 60 && qBlue(p) < 140; };
+  for (const auto& [a, b] : {std::pair{clicked[0], clicked[1]}, std::pair{clicked[1], clicked[3]}}) {
+    const QPoint middle = d.map->mapTo(&d.s.window, d.map->widget_pixel_of(0.5 * (a + b)));
+    EXPECT_GT(test::count_near(shot, middle, 4, green), 4)
+        << "no green leg at " << (0.5 * (a + b)).transpose();
+  }
+  QTest::keyClick(d.map, Qt::Key_Return);
+
+  EXPECT_FALSE(d.map->is_drawing_waypoints());
+  EXPECT_TRUE(d.dialog->isVisible());
+  if (qEnvironmentVariableIsSet("PLENOPATH_TEST_SAVE")) d.dialog->grab().save("/tmp/cg_scene_dialog.png");
+  const widgets::CgSceneChoices c1 = d.dialog->choices();
+  EXPECT_FALSE(c1.use_project_path);
+  EXPECT_TRUE(c1.path_file.empty());
+  const std::vector<Eigen::Vector2d> typed = parse_waypoints(c1.waypoints);
+  const std::vector<Eigen::Vector2d> expected = {clicked[0], clicked[1], clicked[3]};
+  ASSERT_EQ(typed.size(), expected.size()) << c1.waypoints;
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_LT((typed[k] - expected[k]).norm(), 0.02) << k << ": " << c1.waypoints;
+  // walk_waypoints reads it: a walk from the first point clicked, every frame on the clicked polyline, as
+  // long as it (to within a step: the last frame is the last whole step).
+  const CameraPath walk = walk_waypoints(c1.waypoints, c1.step_m);
+  CameraPath clicked_line;
+  for (const Eigen::Vector2d& p : expected) {
+    clicked_line.frames.emplace_back();
+    clicked_line.frames.back().x = p.x();
+    clicked_line.frames.back().y = p.y();
+  }
+  EXPECT_LT((walk.frames.front().position() - clicked[0]).norm(), 0.02);
+  for (const PathFrame& f : walk.frames) EXPECT_LT(distance_to_path(f.position(), clicked_line), 0.02);
+  EXPECT_NEAR(walk.length(), clicked_line.length(), c1.step_m + 0.04);
+  EXPECT_TRUE(d.dialog->findChild<QLabel*>("cg_waypoints_note")->text().startsWith("3 waypoint"));
+
+  // Drawn again, finished by a double-click (its click adds the last waypoint; its release adds none).
+  QTest::mouseClick(d.button("cg_draw_on_plan"), Qt::LeftButton);
+  ASSERT_TRUE(d.map->is_drawing_waypoints());
+  d.click_on_plan(clicked[0]);
+  d.click_on_plan(clicked[2]);
+  const QPoint last = d.map->widget_pixel_of(clicked[3]);
+  QTest::mouseClick(d.map, Qt::LeftButton, Qt::NoModifier, last);
+  QTest::mouseDClick(d.map, Qt::LeftButton, Qt::NoModifier, last);
+  QTest::mouseRelease(d.map, Qt::LeftButton, Qt::NoModifier, last);
+  EXPECT_FALSE(d.map->is_drawing_waypoints());
+  EXPECT_TRUE(d.dialog->isVisible());
+  EXPECT_EQ(parse_waypoints(d.dialog->choices().waypoints).size(), 3u) << d.dialog->choices().waypoints;
+  d.dialog->reject();
+}
+
+TEST(CgScene, EscOnTheMapKeepsTheWaypointsTyped) {
+  StudioWithDialog d;
+  d.waypoints()->setText("1,1 2,2");
+  QTest::mouseClick(d.button("cg_draw_on_plan"), Qt::LeftButton);
+  ASSERT_TRUE(d.map->is_drawing_waypoints());
+  d.map->render_now();
+  d.click_on_plan({12.0, 7.5});
+  d.click_on_plan({14.0, 7.5});
+  QTest::keyClick(d.map, Qt::Key_Escape);
+  EXPECT_FALSE(d.map->is_drawing_waypoints());
+  EXPECT_TRUE(d.map->drawn_waypoints().empty());
+  EXPECT_TRUE(d.dialog->isVisible());
+  EXPECT_EQ(d.dialog->choices().waypoints, "1,1 2,2");
+  // Enter with one waypoint is not the end: two at least.
+  QTest::mouseClick(d.button("cg_draw_on_plan"), Qt::LeftButton);
+  d.click_on_plan({12.0, 7.5});
+  QTest::keyClick(d.map, Qt::Key_Enter);
+  EXPECT_TRUE(d.map->is_drawing_waypoints());
+  EXPECT_FALSE(d.dialog->isVisible());
+  QTest::keyClick(d.map, Qt::Key_Escape);
+  EXPECT_EQ(d.dialog->choices().waypoints, "1,1 2,2");
+  d.dialog->reject();
+}
+
+// Whether b lies inside the polygon (even-odd rule).
+bool inside(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& b) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Eigen::Vector2d &p = polygon[i], &q = polygon[j];
+    if ((p.y() > b.y()) != (q.y() > b.y()) &&
+        b.x() < (q.x() - p.x()) * (b.y() - p.y()) / (q.y() - p.y()) + p.x())
+      in = !in;
+  }
+  return in;
+}
+
+TEST(CgScene, ALegThroughAWallIsWarnedAbout) {
+  StudioWithDialog d;
+  // From the corridor into a room straight through its wall: b is not in a's visibility polygon.
+  const Eigen::Vector2d a(7.0, 7.5), b(7.5, 3.0), c(10.0, 7.5);
+  const VisibilityIndex index(make_office_sample_plan());
+  const Envelope seen = index.envelope(a);
+  ASSERT_EQ(seen.status, EnvelopeStatus::ok);
+  ASSERT_FALSE(inside(seen.polygon, b)) << "the oracle: a wall stands between a and b";
+  ASSERT_TRUE(inside(seen.polygon, c));
+  QTest::mouseClick(d.button("cg_draw_on_plan"), Qt::LeftButton);
+  d.map->render_now();
+  d.click_on_plan(a);
+  d.click_on_plan(c);
+  EXPECT_EQ(d.map->waypoint_legs_crossing_walls(), 0);
+  QTest::keyClick(d.map, Qt::Key_Backspace);
+  d.click_on_plan(b);
+  EXPECT_EQ(d.map->waypoint_legs_crossing_walls(), 1);
+  QTest::keyClick(d.map, Qt::Key_Enter);
+  const QString note = d.dialog->findChild<QLabel*>("cg_waypoints_note")->text();
+  EXPECT_TRUE(note.contains("cross a wall")) << note.toStdString();
+  d.dialog->reject();
+}
+
+TEST(CgScene, AutoWalkWaypointsStayInTheFreeSpaceOfThePlan) {
+  StudioWithDialog d;
+  ASSERT_TRUE(d.button("cg_auto_walk")->isEnabled());
+  QTest::mouseClick(d.button("cg_auto_walk"), Qt::LeftButton);
+  const widgets::CgSceneChoices c = d.dialog->choices();
+  EXPECT_FALSE(c.use_project_path);
+  const std::vector<Eigen::Vector2d> points = parse_waypoints(c.waypoints);
+  std::printf("auto walk: %zu waypoints, %zu characters\n", points.size(), c.waypoints.size());
+  ASSERT_GE(points.size(), 10u);
+  const FloorPlan plan = make_office_sample_plan();
+  const CameraPath truth = auto_walk(plan);
+  EXPECT_LT(points.size(), truth.size() / 4) << "thinned to the corners";
+  const CameraPath walk = walk_waypoints(c.waypoints, 0.05);
+  const VisibilityIndex index(plan);
+  int outside = 0;
+  double worst = 0.0;
+  for (const PathFrame& f : walk.frames) {
+    outside += index.classify(f.position()) != EnvelopeStatus::ok;
+    worst = std::max(worst, distance_to_path(f.position(), truth));
+  }
+  EXPECT_EQ(outside, 0) << "of " << walk.size() << " frames";
+  EXPECT_LT(worst, 0.05);
+  EXPECT_GT(walk.length(), 0.95 * truth.length());
+  d.dialog->reject();
+
+  // Without a plan there is no automatic walk; drawing is still possible.
+  StudioWithDialog empty(false);
+  EXPECT_FALSE(empty.button("cg_auto_walk")->isEnabled());
+  EXPECT_TRUE(empty.button("cg_draw_on_plan")->isEnabled());
+  empty.dialog->reject();
+}
+
+TEST(CgScene, APathFileChoiceRendersAlongTheFilesPoses) {
+  SceneDir dir;
+  CameraPath file_path;
+  for (int k = 0; k < 4; ++k) {
+    PathFrame f;
+    f.index = 10 + 3 * k;  // the file's own numbering; the capture numbers the frames 0..3
+    f.x = -3.0 + 1.5 * k;
+    f.y = 0.4 * k - 0.5;
+    f.heading = 0.3 * k - 0.2;
+    file_path.frames.push_back(f);
+  }
+  const std::string file = (dir.path / "walk.json").string();
+  write_path_file(file_path, file);
+
+  StudioWithDialog d(false);
+  auto* choice = d.dialog->findChild<QRadioButton*>("cg_path_file_choice");
+  ASSERT_NE(choice, nullptr);
+  auto* file_edit = d.dialog->findChild<QLineEdit*>("cg_path_file");
+  EXPECT_FALSE(file_edit->isEnabled());
+  QTest::mouseClick(choice, Qt::LeftButton);
+  ASSERT_TRUE(choice->isChecked());
+  EXPECT_TRUE(file_edit->isEnabled());
+  file_edit->setText(QString::fromStdString(file));
+  widgets::CgSceneChoices c = d.dialog->choices();
+  EXPECT_FALSE(c.use_project_path);
+  EXPECT_EQ(c.path_file, file);
+  d.dialog->reject();
+
+  widgets::CgSceneChoices room = room_choices(dir, "from_file", false);
+  room.path_file = c.path_file;
+  room.waypoints.clear();
+  ASSERT_TRUE(d.s.window.tasks().start("Render CG scene", studio::render_cg_scene_task(room)));
+  d.s.window.tasks().wait();
+  ASSERT_TRUE(d.s.errors.isEmpty()) << d.s.errors.join("\n").toStdString();
+  const CameraPath& rendered = d.s.window.document().project().path;
+  ASSERT_EQ(rendered.size(), file_path.size());
+  for (std::size_t k = 0; k < rendered.size(); ++k) {
+    EXPECT_EQ(rendered.frames[k].index, static_cast<int>(k));
+    EXPECT_NEAR(rendered.frames[k].x, file_path.frames[k].x, 1e-6);
+    EXPECT_NEAR(rendered.frames[k].y, file_path.frames[k].y, 1e-6);
+    EXPECT_NEAR(rendered.frames[k].heading, file_path.frames[k].heading, 1e-6);
+  }
+  EXPECT_EQ(d.s.window.document().project().capture.frame_names.size(), file_path.size());
 }
 
 }  // namespace
