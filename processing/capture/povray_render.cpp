@@ -241,12 +241,19 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const fs::path& dep
     {
       cv::Mat difference;
       cv::absdiff(white, black, difference);
-      if (cv::countNonZero(difference.reshape(1)) < static_cast<int>(difference.total()) / 100)
-        throw Error("POV-Ray scene " + scene_file +
-                    ": the depth passes show no fog, so no depth: the camera is inside an object that is not "
-                    "hollow (add `hollow` to the object around the camera: the room's box, or a ceiling "
-                    "`plane { y, H }`, "
-                    "whose inside is everything below it)");
+      if (cv::countNonZero(difference.reshape(1)) < static_cast<int>(difference.total()) / 100) {
+        const PathFrame& pose = poses[static_cast<std::size_t>(i)];
+        std::ostringstream where;
+        where.precision(3);
+        where << std::fixed << " at frame " << pose.index << " (" << pose.x << ", " << pose.y << ") m, "
+              << o.camera_height_m << " m up";
+        throw Error(
+            "POV-Ray scene " + scene_file + ": the depth passes show no fog" + where.str() +
+            ", so no depth: the camera is inside an object that is not hollow (add `hollow` to the "
+            "object around the camera: the room's box, or a ceiling `plane { y, H }`, whose inside is "
+            "everything below it; an object cut by `clipped_by` keeps the inside of its whole shape), "
+            "or move the camera out of it");
+      }
     }
     for (int r = 0; r < height; ++r) {
       const std::uint16_t* b = black.ptr<std::uint16_t>(r);

@@ -246,6 +246,9 @@ TEST(PovrayRender, ClearErrorsForMissingScenesBrokenScenesAndNoPovray) {
     FAIL() << "no error for a camera inside a solid object";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("hollow"), std::string::npos) << e.what();
+    // It says which frame, where: the frame at the origin, 1.6 m up.
+    EXPECT_NE(std::string(e.what()).find("at frame 0 (0.000, 0.000) m, 1.600 m up"), std::string::npos)
+        << e.what();
   }
   options.executable = "no-such-povray-program";
   write_room(dir.path / "room.pov", 1.0);
