@@ -1,10 +1,6 @@
 #include "processing/capture/blender_render.h"
 
-#include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -24,6 +20,8 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/util/child_process.h"
+#include "processing/util/scoped_folder.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;
@@ -163,19 +161,7 @@ bool is_blender_scene(const std::string& scene_file) {
 }
 
 std::string find_blender(const std::string& executable) {
-  auto runnable = [](const fs::path& p) { return access(p.c_str(), X_OK) == 0 && !fs::is_directory(p); };
-  if (executable.find('/') != std::string::npos) {
-    if (runnable(executable)) return fs::absolute(executable).string();
-    throw Error("Blender: " + executable + " is not an executable program");
-  }
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-    if (!dir.empty() && runnable(fs::path(dir) / executable))
-      return fs::absolute(fs::path(dir) / executable).string();
-  throw Error("Blender (" + executable +
-              ") is not installed: `sudo apt-get install blender` (cmake/install-deps.sh installs it)");
+  return find_program(executable, "Blender", "blender");
 }
 
 cv::Mat read_uncompressed_exr_channel(const std::string& file, const std::string& suffix) {
@@ -295,13 +281,7 @@ void render_blender_frames(const std::string& scene_file, const std::vector<Path
   const fs::path work = fs::absolute(work_dir) / "blender";
   fs::remove_all(work);
   fs::create_directories(work);
-  struct RemoveWork {
-    fs::path dir;
-    ~RemoveWork() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } remove_work{work};
+  const RemoveFolderOnExit remove_work(work);  // whatever happens
   const fs::path script = work / "plenopath_render.py", job_file = work / "job.json",
                  log = work / "blender.log";
   {
@@ -324,35 +304,8 @@ void render_blender_frames(const std::string& scene_file, const std::vector<Path
   const std::vector<std::string> argv = {
       blender,         "-b", scene.string(),   "--factory-startup", "--python-exit-code", "1", "--python",
       script.string(), "--", job_file.string()};
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  // Blender runs in the scene's folder (relative paths in the .blend resolve against the file anyway);
-  // between fork and exec only async-signal-safe calls: the studio calls this from a worker thread.
-  const std::string cwd = scene.parent_path().string(), log_name = log.string();
-  const pid_t pid = fork();
-  if (pid < 0) throw Error("Blender: cannot start a process");
-  if (pid == 0) {
-    const int fd = open(log_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    if (chdir(cwd.c_str()) != 0) _exit(126);
-    execv(args[0], args.data());  // argv[0] is a path (find_blender): no PATH search after fork
-    _exit(127);
-  }
-  struct KillOnThrow {
-    pid_t pid;
-    bool running = true;
-    ~KillOnThrow() {
-      if (!running) return;
-      int status = 0;
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-    }
-  } child{pid};
+  // Blender runs in the scene's folder (relative paths in the .blend resolve against the file anyway).
+  const std::string log_name = log.string();
   auto failure = [&](const std::string& what) {
     return Error("Blender failed on " + scene_file + " (" + what + "):\n" + last_messages(log_name, 1500));
   };
@@ -400,28 +353,13 @@ void render_blender_frames(const std::string& scene_file, const std::vector<Path
     }
     return any;
   };
-  auto last_change = std::chrono::steady_clock::now();
-  for (;;) {
-    int status = 0;
-    const pid_t r = waitpid(pid, &status, WNOHANG);
-    if (r == pid) {
-      child.running = false;
-      take_ready();
-      const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      if (done < total)
-        throw failure(code != 0
-                          ? "exit " + std::to_string(code)
-                          : "it wrote " + std::to_string(done) + " of " + std::to_string(total) + " frames");
-      return;
-    }
-    if (take_ready()) last_change = std::chrono::steady_clock::now();
-    progress.throw_if_cancelled();  // the child is killed on the way out
-    const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change).count();
-    if (idle > o.timeout_s)
-      throw Error("Blender took longer than " + std::to_string(static_cast<int>(o.timeout_s)) +
-                  " s for a frame of " + scene_file);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  const int code = run_child_process(
+      argv, {scene.parent_path().string(), log_name, o.timeout_s, "Blender", " for a frame of " + scene_file},
+      progress, take_ready);
+  if (done < total)
+    throw failure(code != 0
+                      ? "exit " + std::to_string(code)
+                      : "it wrote " + std::to_string(done) + " of " + std::to_string(total) + " frames");
 }
 
 BlenderFrame render_blender_frame(const std::string& scene_file, const PathFrame& pose,

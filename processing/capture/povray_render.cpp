@@ -1,10 +1,6 @@
 #include "processing/capture/povray_render.h"
 
-#include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -23,54 +19,11 @@
 #include "model/error.h"
 #include "model/option_check.h"
 #include "processing/capture/povray_atmosphere.h"
+#include "processing/util/child_process.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;
 namespace {
-
-std::string tail_of_file(const std::string& file, std::size_t bytes) {
-  std::ifstream in(file, std::ios::binary);
-  const std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return all.size() > bytes ? "..." + all.substr(all.size() - bytes) : all;
-}
-
-// Runs argv (argv[0] a path to the program) in `cwd` with stdout and stderr to `log`; polls for a cancel and
-// the timeout. Returns the exit status (-1 when it did not exit normally). Between fork and exec only
-// async-signal-safe calls: the studio calls this from a worker thread.
-int run_process(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log,
-                double timeout_s, Progress& progress) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw Error("POV-Ray: cannot start a process");
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    if (chdir(cwd.c_str()) != 0) _exit(126);
-    execv(args[0], args.data());  // argv[0] is a path (find_povray): no PATH search after fork
-    _exit(127);
-  }
-  const auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    int status = 0;
-    const pid_t r = waitpid(pid, &status, WNOHANG);
-    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (progress.is_cancelled() || elapsed > timeout_s) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      progress.throw_if_cancelled();
-      throw Error("POV-Ray took longer than " + std::to_string(static_cast<int>(timeout_s)) +
-                  " s for a pass");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
 
 std::string pov_vector(double x, double y, double z) {
   char text[160];
@@ -98,19 +51,7 @@ void PovrayOptions::check() const {
 }
 
 std::string find_povray(const std::string& executable) {
-  auto runnable = [](const fs::path& p) { return access(p.c_str(), X_OK) == 0 && !fs::is_directory(p); };
-  if (executable.find('/') != std::string::npos) {
-    if (runnable(executable)) return fs::absolute(executable).string();
-    throw Error("POV-Ray: " + executable + " is not an executable program");
-  }
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-    if (!dir.empty() && runnable(fs::path(dir) / executable))
-      return fs::absolute(fs::path(dir) / executable).string();
-  throw Error("POV-Ray (" + executable +
-              ") is not installed: `sudo apt-get install povray` (cmake/install-deps.sh installs it)");
+  return find_program(executable, "POV-Ray", "povray");
 }
 
 namespace {
@@ -190,8 +131,9 @@ std::vector<PovrayFrame> render_chunk(const fs::path& scene, const fs::path& dep
       argv.push_back("+KFF" + std::to_string(count - 1));
     }
     argv.insert(argv.end(), flags.begin(), flags.end());
-    const int status =
-        run_process(argv, included.parent_path().string(), log.string(), o.timeout_s * count, progress);
+    const int status = run_child_process(
+        argv, {included.parent_path().string(), log.string(), o.timeout_s * count, "POV-Ray", " for a pass"},
+        progress);
     std::vector<cv::Mat> images;
     for (int i = 0; i < count; ++i) {
       const fs::path image = image_of(i);

@@ -14,6 +14,7 @@
 #include "model/path_io.h"
 #include "processing/capture/frame_files.h"
 #include "processing/sampling/online_sampling.h"
+#include "processing/util/scoped_folder.h"
 
 namespace plenopath {
 
@@ -184,14 +185,7 @@ CgCaptureResult render_cg_capture(const std::string& scene_file, const CameraPat
   if (depth) fs::create_directories(out / "depth");
   const fs::path work = out / (blender ? ".blender" : ".povray");
   fs::create_directories(work);
-  // Whatever happens, the work folder goes.
-  struct RemoveWork {
-    fs::path dir;
-    ~RemoveWork() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } remove_work{work};
+  const RemoveFolderOnExit remove_work(work);  // whatever happens
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   auto write_frame = [&](const PathFrame& pose, const cv::Mat& rgb, const cv::Mat& depth_image) {

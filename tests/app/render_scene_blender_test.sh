@@ -54,7 +54,7 @@ blender -b --factory-startup --python-exit-code 1 --python "$tmp/make_room.py" -
 [[ $(ls "$tmp/out/frames" | wc -l) -eq 6 ]] || fail "expected 6 frames, got $(ls "$tmp/out/frames" | wc -l)"
 [[ $(ls "$tmp/out/depth" | wc -l) -eq 6 ]] || fail "expected 6 depth maps"
 [[ ! -e "$tmp/out/.blender" ]] || fail "the work folder was left behind"
-python3 - "$tmp/out" <<'PY' || fail "ground truth or depth content"
+python3 - "$tmp/out" "$(dirname "$0")" <<'PY' || fail "ground truth or depth content"
 import json, math, struct, sys, zlib
 out = sys.argv[1]
 g = json.load(open(out + "/groundtruth.json"))
@@ -64,34 +64,13 @@ assert fr[0]["x"] == -4.0 and fr[0]["y"] == 0.0 and abs(fr[0]["heading_deg"]) < 
 assert abs(fr[-1]["y"] - 1.0) < 1e-9 and abs(fr[-1]["heading_deg"] - 90) < 1e-6, fr[-1]
 for i, f in enumerate(fr):
     assert f["index"] == i and f["file"] == "frames/%06d.jpg" % i, f
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, sys.argv[2])
+from png16 import read_png16
 def png_rows(name):
-    data = open(name, "rb").read()
-    w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
-    assert (w, h, depth, colour) == (64, 32, 16, 0), (w, h, depth, colour)
-    chunks, pos = b"", 8
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        if kind == b"IDAT":
-            chunks += data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-    raw = zlib.decompress(chunks)
-    bpp, stride, rows, prev = 2, 2 * w, [], bytearray(2 * w)
-    for v in range(h):
-        kind, line = raw[v * (stride + 1)], bytearray(raw[v * (stride + 1) + 1:(v + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if kind == 1: line[i] = (line[i] + a) & 255
-            elif kind == 2: line[i] = (line[i] + b) & 255
-            elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
-            elif kind == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
-    return lambda u, v: struct.unpack(">H", bytes(rows[v][2 * u:2 * u + 2]))[0]
+    w, h, rows = read_png16(name)
+    assert (w, h) == (64, 32), (w, h)
+    return lambda u, v: rows[v][u]
 # Frame 0 looks along +x from (-4, 0), 1.6 m up: the pixel just right of the centre of row 16 (elevation
 # -2.8 deg) sees the far wall x = 5 at 9 m / cos(2.8 deg) / cos(2.8 deg azimuth); straight behind, x = -5 at
 # 1 m. Frame 5 at (-2.5, 1) looks along +y: the north wall y = 3 is 2 m ahead.

@@ -21,7 +21,7 @@ POV
 [[ $(ls "$tmp/out/frames" | wc -l) -eq 6 ]] || fail "expected 6 frames, got $(ls "$tmp/out/frames" | wc -l)"
 [[ $(ls "$tmp/out/depth" | wc -l) -eq 6 ]] || fail "expected 6 depth maps"
 [[ ! -e "$tmp/out/.povray" ]] || fail "the work folder was left behind"
-python3 - "$tmp/out" <<'PY' || fail "ground truth or depth content"
+python3 - "$tmp/out" "$(dirname "$0")" <<'PY' || fail "ground truth or depth content"
 import json, struct, sys, zlib
 out = sys.argv[1]
 g = json.load(open(out + "/groundtruth.json"))
@@ -33,35 +33,13 @@ for i, f in enumerate(fr):
     assert f["index"] == i and f["file"] == "frames/%06d.jpg" % i, f
 # Frame 0 looks along +x from (-4, 0), 1.6 m up: the pixel just right of the centre of row 16 (elevation
 # -2.8 deg) sees the far wall x = 5 at 9 m / cos(2.8 deg) / cos(2.8 deg azimuth); straight behind, x = -5 at 1 m.
-data = open(out + "/depth/000000.png", "rb").read()
-w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
-assert (w, h, depth, colour) == (64, 32, 16, 0), (w, h, depth, colour)
-chunks, pos = b"", 8
-while pos < len(data):
-    n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-    if kind == b"IDAT":
-        chunks += data[pos + 8:pos + 8 + n]
-    pos += 12 + n
-raw = zlib.decompress(chunks)
-# Undo the PNG row filters (2 bytes a pixel, grey 16-bit).
-bpp, stride, rows, prev = 2, 2 * w, [], bytearray(2 * w)
-for v in range(h):
-    kind, line = raw[v * (stride + 1)], bytearray(raw[v * (stride + 1) + 1:(v + 1) * (stride + 1)])
-    for i in range(stride):
-        a = line[i - bpp] if i >= bpp else 0
-        b = prev[i]
-        c = prev[i - bpp] if i >= bpp else 0
-        if kind == 1: line[i] = (line[i] + a) & 255
-        elif kind == 2: line[i] = (line[i] + b) & 255
-        elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
-        elif kind == 4:
-            p = a + b - c
-            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    rows.append(line)
-    prev = line
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, sys.argv[2])
+from png16 import read_png16
+w, h, rows = read_png16(out + "/depth/000000.png")
+assert (w, h) == (64, 32), (w, h)
 def depth_mm(u, v):
-    return struct.unpack(">H", bytes(rows[v][2 * u:2 * u + 2]))[0]
+    return rows[v][u]
 import math
 el = math.radians(90 - 16.5 / 32 * 180)
 az = math.radians(32.5 / 64 * 360 - 180)

@@ -26,11 +26,13 @@ import json
 import math
 import os
 import shutil
-import struct
 import subprocess
 import sys
 import time
-import zlib
+
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "app"))
+from png16 import read_png16  # noqa: E402
 
 EXAMPLES = "/usr/share/povray-3.7/scenes"
 SCENES = {
@@ -67,40 +69,6 @@ def load_average():
         return float(open("/proc/loadavg").read().split()[0])
     except OSError:
         return -1.0
-
-
-def read_png16(path):
-    """A 16-bit grey PNG (as the studio writes depth) as rows of millimetres, by hand (no imaging library)."""
-    data = open(path, "rb").read()
-    w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
-    assert depth == 16 and colour == 0, (path, depth, colour)
-    chunks, pos = b"", 8
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        if kind == b"IDAT":
-            chunks += data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-    raw = zlib.decompress(chunks)
-    bpp, stride, rows, prev = 2, 2 * w, [], bytearray(2 * w)
-    for v in range(h):
-        kind, line = raw[v * (stride + 1)], bytearray(raw[v * (stride + 1) + 1:(v + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if kind == 1:
-                line[i] = (line[i] + a) & 255
-            elif kind == 2:
-                line[i] = (line[i] + b) & 255
-            elif kind == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif kind == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([struct.unpack(">H", bytes(line[2 * u:2 * u + 2]))[0] for u in range(w)])
-        prev = line
-    return w, h, rows
 
 
 def floor_depth_errors(depth_png, camera_height, max_off_nadir_deg=25.0):
