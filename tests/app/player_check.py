@@ -161,9 +161,19 @@ def check_swap_sequence(b, spot, before, prefix):
         fail('the sequence did not play (the picture stayed the same)')
     if held['hash'] != late['hash']:
         fail('the sequence does not hold its last frame')
+    # The second click, then the picture: waited for by state, not by time (a loaded machine renders late).
+    fired = b.evaluate("window.plenopathPlayer.events.length")
     b.click(spot['x'], spot['y'])
-    time.sleep(0.5)
+    deadline = time.time() + 2.0
+    while time.time() < deadline and b.evaluate("window.plenopathPlayer.events.length") == fired:
+        time.sleep(0.1)
+    if b.evaluate("window.plenopathPlayer.events.length") == fired:
+        b.click(spot['lx'], spot['ly'])  # the label, as the first click may have needed
+    deadline = time.time() + 15.0
     back = b.evaluate(PIXELS)
+    while back['hash'] != before['hash'] and time.time() < deadline:
+        time.sleep(0.2)
+        back = b.evaluate(PIXELS)
     if back['hash'] != before['hash']:
         fail('a second click did not bring the original region back')
     print('sequence swapped in, played, held its last frame, swapped back')
