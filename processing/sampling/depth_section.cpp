@@ -16,6 +16,7 @@ void DepthSectionOptions::check() const {
   require_option(cell_m > 0 && std::isfinite(cell_m), s + "cell_m", "must be > 0", cell_m);
   require_option(max_range_m > cell_m, s + "max_range_m", "must be > cell_m", max_range_m);
   require_option(join_ratio >= 0 && join_ratio < 1, s + "join_ratio", "must be in [0, 1)", join_ratio);
+  require_option(max_columns >= 16, s + "max_columns", "must be >= 16", max_columns);
   require_option(simplify_m >= 0, s + "simplify_m", "must be >= 0", simplify_m);
   require_option(min_outline_m >= 0, s + "min_outline_m", "must be >= 0", min_outline_m);
   require_option(!layer.empty(), s + "layer", "must not be empty", layer);
@@ -34,20 +35,23 @@ void DepthSectionBuilder::add(const cv::Mat& depth_in, const PathFrame& pose) {
     depth = depth_in;
   else
     throw Error("section from depth: CV_32F metres or CV_16U millimetres expected");
-  const int w = depth.cols, h = depth.rows;
+  const int h = depth.rows;
+  // Every k-th column of a wide panorama (the column's centre azimuth is kept exact below).
+  const int stride = (depth.cols + options_.max_columns - 1) / options_.max_columns;
+  const int w = depth.cols / stride;
   // The nearer of the two rows astride the horizon, as envelope_from_depth reads them; 0 = nothing hit.
   const int upper = std::max(0, h / 2 - 1), lower = std::min(h - 1, h / 2);
   std::vector<double> range(static_cast<std::size_t>(w), 0.0);
   for (int u = 0; u < w; ++u)
     for (int v : {upper, lower}) {
-      const float r = depth.at<float>(v, u);
+      const float r = depth.at<float>(v, u * stride + stride / 2);
       double& best = range[static_cast<std::size_t>(u)];
       if (std::isfinite(r) && r > 0.0f && r <= options_.max_range_m && (best == 0.0 || r < best)) best = r;
     }
   Frame frame;
   frame.centre = pose.position();
   auto point = [&](int u, double r) {
-    const double azimuth = (u + 0.5) / w * 2.0 * M_PI - M_PI;
+    const double azimuth = (u * stride + stride / 2 + 0.5) / depth.cols * 2.0 * M_PI - M_PI;
     const double world = pose.heading - azimuth;  // ARCHITECTURE.md: clockwise azimuth from the heading
     return Eigen::Vector2d(frame.centre + r * Eigen::Vector2d(std::cos(world), std::sin(world)));
   };

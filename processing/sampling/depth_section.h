@@ -28,6 +28,8 @@ struct DepthSectionOptions {
   double max_range_m = 40.0;      // sight is taken to stop here when nothing nearer was hit
   double join_ratio = 0.08;       // adjacent columns are one surface when their distances differ by less
                                   // than this fraction (plus two cells)
+  int max_columns = 1024;         // wider depth is read every k-th column: memory per frame stays bounded
+                                  // (a long full-size render keeps every frame's sight until finish)
   double simplify_m = 0.03;       // outlines simplified to this tolerance (Douglas-Peucker)
   double min_outline_m = 0.15;    // pillars and holes smaller than this across are dropped (noise)
   std::string layer = "SECTION";  // the walls' layer (the unseen limit's is this + "-UNSEEN")

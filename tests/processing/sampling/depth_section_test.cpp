@@ -87,6 +87,11 @@ TEST(DepthSection, ThreeRoomsCutAtEyeHeightAreThePlansRooms) {
   expect_section_matches(sampling_test::three_rooms(), sampling_test::three_rooms_path(), 512, 10);
 }
 
+// Wider than max_columns (1024): read every second column, the same rooms.
+TEST(DepthSection, WidePanoramasAreReadEveryKthColumn) {
+  expect_section_matches(sampling_test::three_rooms(), sampling_test::three_rooms_path(), 2048, 10);
+}
+
 TEST(DepthSection, TheOfficeSampleCutAtEyeHeight) {
   const FloorPlan plan = make_office_sample_plan();
   AutoWalkOptions walk;
