@@ -1,7 +1,8 @@
 // `plenopath make-sample --out DIR [--frames N] [--size 1024x512]`: writes the office sample: DIR/office.dxf
 // (millimetres, layers WALLS, COLUMNS, DOORS with swing arcs, FURNITURE as block inserts, TEXT labels),
 // DIR/office_path.json (the default walk) and DIR/office.plenopath (the plan imported from the DXF, the walk,
-// and a capture in DIR/capture/ that `plenopath render` fills; `make run` does that).
+// its visibility cells and keyframes, and a capture in DIR/capture/ that `plenopath render` fills; `make run`
+// does that).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,8 @@
 #include "model/project_io.h"
 #include "processing/plan/dxf_export.h"
 #include "processing/plan/dxf_import.h"
+#include "processing/sampling/sampling_session.h"
+#include "processing/visibility/visibility.h"
 #include "rig/plan_drawing.h"
 #include "rig/synthetic_camera.h"
 
@@ -56,6 +59,13 @@ int run(const Options& o) {
   for (const auto& f : path.frames)
     project.capture.frame_names.push_back(fs::path(f.file).filename().string());
   project.tour.title = "Office sample";
+  // Ready to export as it opens: the walk's visibility cells, and keyframes by the studio's default method.
+  if (path.size() >= 2) {
+    project.visibility = VisibilityIndex(project.plan).cells_along_path(path);
+    SamplingRequest request;
+    request.geometric_loss = false;
+    project.keyframes = SamplingSession().run(project, request).keyframes;
+  }
   save_project(project, (dir / "office.plenopath").string());
   fs::remove(dir / "office.plenopath.bak");
   std::cout << "sample: wrote " << dxf << ", office_path.json (" << path.size() << " frames, "
