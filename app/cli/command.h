@@ -24,6 +24,7 @@ Command add_capture_info_command(CLI::App& parent);
 Command add_encode_video_command(CLI::App& parent);
 Command add_eval_path_command(CLI::App& parent);
 Command add_export_command(CLI::App& parent);
+Command add_import_tour_command(CLI::App& parent);
 Command add_info_command(CLI::App& parent);
 Command add_make_sample_command(CLI::App& parent);
 Command add_place_still_command(CLI::App& parent);

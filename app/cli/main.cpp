@@ -14,11 +14,11 @@ int main(int argc, char** argv) {
 
   std::vector<Command> commands = {
       add_capture_info_command(app), add_encode_video_command(app), add_eval_path_command(app),
-      add_export_command(app),       add_info_command(app),         add_make_sample_command(app),
-      add_place_still_command(app),  add_plan_info_command(app),    add_refine_command(app),
-      add_register_command(app),     add_render_command(app),       add_render_scene_command(app),
-      add_sample_command(app),       add_stitch_command(app),       add_track_command(app),
-      add_visibility_command(app),
+      add_export_command(app),       add_import_tour_command(app),  add_info_command(app),
+      add_make_sample_command(app),  add_place_still_command(app),  add_plan_info_command(app),
+      add_refine_command(app),       add_register_command(app),     add_render_command(app),
+      add_render_scene_command(app), add_sample_command(app),       add_stitch_command(app),
+      add_track_command(app),        add_visibility_command(app),
   };
 
   try {

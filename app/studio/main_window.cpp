@@ -89,6 +89,15 @@ MainWindow::MainWindow(QWidget* parent)
                                         suggested, tr("Tour folder (*);;Tour archive (*.zip)"));
   };
 
+  ask_tour_package = [this] {
+    return QFileDialog::getOpenFileName(this, tr("Import tour — its tour.json or its .zip"), QString(),
+                                        tr("Tours (tour.json *.zip);;All files (*)"));
+  };
+  ask_imported_project = [this](const QString& suggested) {
+    return QFileDialog::getSaveFileName(this, tr("Project to make from the tour"), suggested,
+                                        tr("Plenopath project (*.plenopath)"));
+  };
+
   map_ = new widgets::MapView(*document_, this);
   panorama_ = new widgets::PanoramaView(*document_, *frames_, this);
   auto* splitter = new QSplitter(Qt::Horizontal, this);
@@ -233,6 +242,9 @@ void MainWindow::create_actions() {
   new ImportCaptureReaction(import_stills, *this, true);
   QAction* import_path = file->addAction(tr("Import camera &path…"));
   new ImportPathReaction(import_path, *this);
+  QAction* import_tour = file->addAction(tr("Import &tour (to edit it again)…"));
+  import_tour->setObjectName("import_tour");
+  new ImportTourReaction(import_tour, *this);
   QAction* export_tour = file->addAction(tr("&Export tour…"));
   export_tour->setShortcut(tr("Ctrl+Shift+E"));
   new ExportTourReaction(export_tour, *this);

@@ -69,6 +69,9 @@ class MainWindow : public QMainWindow {
   std::function<QMessageBox::StandardButton()> ask_save_changes;
   // Where to export a tour (a folder, or a file ending in .zip); empty = cancelled.
   std::function<QString(const QString& suggested)> ask_export_target;
+  // File > Import tour: the package (a tour.json or a .zip; empty = cancelled), then the project to make.
+  std::function<QString()> ask_tour_package;
+  std::function<QString(const QString& suggested)> ask_imported_project;
   // Where errors go (default: a message box).
   std::function<void(const QString& title, const QString& message)> show_error;
 

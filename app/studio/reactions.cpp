@@ -22,7 +22,9 @@
 #include "app/studio/studio_tasks.h"
 #include "model/error.h"
 #include "model/path_io.h"
+#include "model/project_io.h"
 #include "processing/export/tour_export.h"
+#include "processing/export/tour_import.h"
 #include "widgets/capture_import_dialog.h"
 #include "widgets/cg_scene_dialog.h"
 #include "widgets/document_commands.h"
@@ -177,6 +179,54 @@ void ExportTourReaction::on_triggered() {
                              std::to_string(report.package_bytes / 1024) + " KiB");
     return widgets::TaskResult{std::move(snapshot), 0};  // an export changes nothing in the document
   });
+}
+
+ImportTourReaction::ImportTourReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
+  connect(&window.tasks(), &widgets::TaskRunner::finished, this, [this] { update_enabled(); });
+  connect(&window.tasks(), &widgets::TaskRunner::started, this, [this] { update_enabled(); });
+  update_enabled();
+}
+
+void ImportTourReaction::update_enabled() { action()->setEnabled(!window_.tasks().is_running()); }
+
+void ImportTourReaction::on_triggered() {
+  if (!window_.maybe_save()) return;
+  const QString package = window_.ask_tour_package();
+  if (package.isEmpty()) return;
+  QFileInfo info(package);
+  // A tour.json names its folder; a zip is named for itself.
+  const QString stem =
+      info.fileName() == "tour.json" ? info.absoluteDir().dirName() : info.completeBaseName();
+  const QString file = window_.ask_imported_project(info.absoluteDir().filePath(stem + ".plenopath"));
+  if (file.isEmpty()) return;
+  if (QFileInfo::exists(file)) {
+    window_.show_error(QObject::tr("Import tour"),
+                       QObject::tr("%1 already exists: choose a new project name.").arg(file));
+    return;
+  }
+  // The import writes files and a new project; the open document is left as it is until it is done.
+  auto summary = std::make_shared<std::string>();
+  const TourImportOptions options{package.toStdString(), file.toStdString()};
+  const bool started = window_.tasks().start(
+      QObject::tr("Import tour"), [options, summary](Project snapshot, Progress& progress) {
+        TourImportResult result = import_tour(options, progress);
+        progress.throw_if_cancelled();
+        save_project(result.project, options.project_file);
+        *summary = std::to_string(result.keyframes) + " keyframes, " +
+                   std::to_string(result.project.hotspots.size()) + " hotspots";
+        for (const std::string& w : result.warnings) *summary += "; " + w;
+        return widgets::TaskResult{std::move(snapshot), 0};
+      });
+  if (!started) return;
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = connect(
+      &window_.tasks(), &widgets::TaskRunner::finished, &window_, [this, file, summary, connection](bool) {
+        QObject::disconnect(*connection);
+        if (summary->empty()) return;  // failed or cancelled: said by the task runner
+        if (window_.open_project(file))
+          window_.statusBar()->showMessage(
+              QObject::tr("Imported the tour: %1").arg(QString::fromStdString(*summary)), 20000);
+      });
 }
 
 WalkModeReaction::WalkModeReaction(QAction* action, MainWindow& window) : Reaction(action, window) {

@@ -104,6 +104,17 @@ class ExportTourReaction : public Reaction {
   void update_enabled();
 };
 
+// File > Import tour: a published tour (tour.json or .zip) becomes a project again, made and saved on the
+// task runner (progress, Cancel), then opened.
+class ImportTourReaction : public Reaction {
+ public:
+  ImportTourReaction(QAction* action, MainWindow& window);
+  void on_triggered() override;
+
+ private:
+  void update_enabled();
+};
+
 // View > Walk mode: the tour's experience in a window of its own (widgets/walk_view.h).
 class WalkModeReaction : public Reaction {
  public:

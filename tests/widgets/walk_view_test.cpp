@@ -100,6 +100,7 @@ TEST(WalkView, RefusesAProjectWithoutKeyframes) {
 #include <QDir>
 
 #include "app/studio/main_window.h"
+#include "processing/export/tour_export.h"
 #include "widgets/task_runner.h"
 
 namespace plenopath {
@@ -153,6 +154,51 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   EXPECT_EQ(view->navigator().keyframes().size(), 3u);
   view->close();
   QDir(out).removeRecursively();
+}
+
+// File > Import tour: an exported tour becomes a project again (made on the task runner, then opened) with
+// the tour's keyframes and path, and the open document asked about first.
+TEST(StudioTour, ImportsAnExportedTour) {
+  studio::MainWindow window;
+  window.ask_recovery = [](const QString&) { return false; };
+  window.ask_save_changes = [] { return QMessageBox::Discard; };
+  QStringList errors;
+  window.show_error = [&](const QString& title, const QString& message) { errors << title + ": " + message; };
+  const QString root = QDir::temp().filePath("plenopath_studio_import_tour");
+  QDir(root).removeRecursively();
+  QDir().mkpath(root);
+  Project project = test::test_project("walk").project;
+  project.keyframes.indices = {0, 15, 29};
+  project.keyframes.rank = {0, 2, 1};
+  export_tour(project, TourExportOptions::from_project(project, (root + "/tour.zip").toStdString()));
+  const QString made = root + "/again.plenopath";
+  window.ask_tour_package = [&] { return root + "/tour.zip"; };
+  window.ask_imported_project = [&](const QString& suggested) {
+    EXPECT_EQ(suggested, root + "/tour.plenopath");
+    return made;
+  };
+  window.show();
+  QAction* import = action_named(window, "Import tour");
+  ASSERT_NE(import, nullptr);
+  import->trigger();
+  ASSERT_TRUE(test::wait_until([&] { return window.document().file_name() == made; }))
+      << errors.join("\n").toStdString();
+  const Project& opened = window.document().project();
+  EXPECT_EQ(opened.keyframes.indices, project.keyframes.indices);
+  EXPECT_EQ(opened.keyframes.progressive_order(), project.keyframes.progressive_order());
+  ASSERT_EQ(opened.path.frames.size(), project.path.frames.size());
+  for (std::size_t i = 0; i < project.path.frames.size(); ++i) {
+    EXPECT_NEAR(opened.path.frames[i].x, project.path.frames[i].x, 1e-9);
+    EXPECT_NEAR(opened.path.frames[i].heading, project.path.frames[i].heading, 1e-9);
+  }
+  EXPECT_EQ(opened.capture.frame_count, project.path.frames.back().index + 1);
+  EXPECT_TRUE(QFile::exists(root + "/again_tour/images/k000015_full.jpg"));
+  EXPECT_TRUE(errors.isEmpty()) << errors.join("\n").toStdString();
+  // A second import to the same name is refused before any work.
+  window.ask_imported_project = [&](const QString&) { return made; };
+  import->trigger();
+  EXPECT_EQ(errors.size(), 1);
+  QDir(root).removeRecursively();
 }
 
 }  // namespace
