@@ -1,5 +1,5 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm]
+//  [--quality 85] [--pannellum] [--geojson] [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio]
 //  [--no-photo-metadata] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
 //  [--no-rig-fill]]
 //  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
@@ -22,7 +22,8 @@ Command add_export_command(CLI::App& parent) {
     int max_size = 0, preview_size = 0, quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
     bool no_rig_fill = false, blur_faces = false;
-    bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, no_photo_metadata = false;
+    bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, nerfstudio = false,
+         no_photo_metadata = false;
     std::string nadir, rig_mask;
   };
   auto o = std::make_shared<Options>();
@@ -43,6 +44,8 @@ Command add_export_command(CLI::App& parent) {
   sub->add_flag("--tum", o->tum, "Also write trajectory.tum (TUM RGB-D format: the whole path in the plan)");
   sub->add_flag("--opensfm", o->opensfm,
                 "Also write reconstruction.json: the keyframes as OpenSfM spherical cameras");
+  sub->add_flag("--nerfstudio", o->nerfstudio,
+                "Also write transforms.json: the keyframes as nerfstudio EQUIRECTANGULAR cameras");
   sub->add_flag("--no-photo-metadata", o->no_photo_metadata,
                 "Leave the GPano XMP and EXIF GPS out of the keyframe JPEGs");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
@@ -72,6 +75,7 @@ Command add_export_command(CLI::App& parent) {
             if (o->no_kml_gpx) options.kml_gpx = GeoTrackFiles::kOff;
             options.tum = options.tum || o->tum;
             options.opensfm = options.opensfm || o->opensfm;
+            options.nerfstudio = options.nerfstudio || o->nerfstudio;
             options.photo_metadata = !o->no_photo_metadata;
             options.offline_images = !o->http_only;
             KeyframeCleaning& cleaning = options.cleaning;

@@ -1,7 +1,6 @@
 #include "processing/export/opensfm_reconstruction.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
 
 #include "model/error.h"
 #include "processing/export/trajectory_formats.h"
@@ -24,17 +23,14 @@ nlohmann::json opensfm_reconstruction(const Project& project, const std::vector<
                                       int full_width, int full_height) {
   using nlohmann::json;
   const GeoAnchor& geo = project.geo;
-  const double height = std::max(0.0, project.capture.camera_height_m);
   json shots = json::object();
   for (const KeyframeImageFiles& image : images) {
     const PathFrame* f = project.path.find_frame(image.frame);
     if (!f)
       throw Error("OpenSfM export: keyframe " + std::to_string(image.frame) + " has no pose in the path");
-    // Topocentric (east, north) when georeferenced; the anchor's rotation turns plan angles into ENU ones.
-    const Eigen::Vector2d ground = geo.valid ? geo.enu_from_plan(f->position()) : f->position();
-    const double world_heading = f->heading + (geo.valid ? geo.plan_rotation : 0.0);
-    const Eigen::Vector3d centre(ground.x(), ground.y(), height);
-    const Eigen::Matrix3d camera_from_world = world_from_pano_camera(world_heading).transpose();
+    const WorldCamera camera = world_camera(project, *f);
+    const Eigen::Vector3d& centre = camera.centre;
+    const Eigen::Matrix3d camera_from_world = world_from_pano_camera(camera.heading).transpose();
     const Eigen::AngleAxisd rotation(camera_from_world);
     const Eigen::Vector3d r = rotation.angle() * rotation.axis();
     const Eigen::Vector3d t = -camera_from_world * centre;

@@ -14,6 +14,7 @@
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
 #include "processing/export/keyframe_metadata.h"
+#include "processing/export/nerfstudio_transforms.h"
 #include "processing/export/opensfm_reconstruction.h"
 #include "processing/export/player_assets.h"
 #include "processing/export/tour_interop.h"
@@ -355,6 +356,9 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   if (options.opensfm)
     for (auto& [name, data] : opensfm_files(project, images, full_width, full_width / 2))
       package.add(name, data);
+  if (options.nerfstudio)
+    package.add("transforms.json",
+                nerfstudio_transforms(project, images, full_width, full_width / 2).dump(1) + "\n");
 
   report_progress(0.95, "writing package");
   for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);

@@ -16,6 +16,16 @@ Eigen::Matrix3d world_from_pano_camera(double heading) {
   return r;
 }
 
+WorldCamera world_camera(const Project& project, const PathFrame& frame) {
+  const GeoAnchor& geo = project.geo;
+  // The anchor's rotation turns plan angles into east/north ones; its scale applies to the ground only.
+  const Eigen::Vector2d ground = geo.valid ? geo.enu_from_plan(frame.position()) : frame.position();
+  WorldCamera c;
+  c.centre = {ground.x(), ground.y(), std::max(0.0, project.capture.camera_height_m)};
+  c.heading = frame.heading + (geo.valid ? geo.plan_rotation : 0.0);
+  return c;
+}
+
 std::string tum_trajectory(const Project& project) {
   const double z = std::max(0.0, project.capture.camera_height_m);
   std::string out =

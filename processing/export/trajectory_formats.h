@@ -16,6 +16,15 @@ namespace plenopath {
 // x, y, z in world coordinates.
 Eigen::Matrix3d world_from_pano_camera(double heading);
 
+// A keyframe's camera in the world of the photogrammetry files (OpenSfM, nerfstudio): with a valid
+// geo-anchor the topocentric frame at the anchor (x east, y north, z up, metres on the ground), else the plan
+// frame; the centre at the capture's camera height above the floor (z = 0).
+struct WorldCamera {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double heading = 0.0;  // radians CCW from the world's +X
+};
+WorldCamera world_camera(const Project& project, const PathFrame& frame);
+
 // TUM RGB-D trajectory, one line per path frame: "timestamp tx ty tz qx qy qz qw". The pose is the
 // camera's in the plan frame (world_from_camera: position of the camera centre, orientation as a unit
 // quaternion with qw >= 0), z the camera's height above the floor (0 when the capture does not know it);

@@ -37,8 +37,8 @@ p["geo_anchor"] = {"valid": True, "latitude_deg": 48.0, "longitude_deg": 2.0, "a
 json.dump(p, open(sys.argv[1], "w"))
 PY
 "$cli" export --project "$project" --out "$tmp/tour" --max-size 128 --preview-size 64 --kml-gpx --tum \
-  --opensfm --json > "$tmp/report.json" || fail "export exit $?"
-for f in path.kml path.gpx trajectory.tum reconstruction.json reference_lla.json; do
+  --opensfm --nerfstudio --json > "$tmp/report.json" || fail "export exit $?"
+for f in path.kml path.gpx trajectory.tum reconstruction.json reference_lla.json transforms.json; do
   [[ -f "$tmp/tour/$f" ]] || fail "no $f in the package"
 done
 for kind in -w -t; do
@@ -92,6 +92,9 @@ tum = [l for l in open(os.path.join(tmp, "tour", "trajectory.tum")) if not l.sta
 assert len(tum) == len(frames), len(tum)
 shots = json.load(open(os.path.join(tmp, "tour", "reconstruction.json")))[0]["shots"]
 assert sorted(shots) == ["k%06d_full.jpg" % k for k in keyframes], sorted(shots)
+nerf = json.load(open(os.path.join(tmp, "tour", "transforms.json")))
+assert sorted(f["file_path"] for f in nerf["frames"]) == ["images/k%06d_full.jpg" % k for k in keyframes], nerf
+assert nerf["camera_model"] == "EQUIRECTANGULAR" and (nerf["w"], nerf["h"]) == (128, 64), nerf
 print("interop: %d frames, %d keyframes, worst gpsbabel position error %.1e deg" %
       (len(frames), len(keyframes), worst))
 PY

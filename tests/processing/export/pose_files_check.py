@@ -3,6 +3,7 @@
 
   pose_files_check.py tum FILE TRUTH.json
   pose_files_check.py opensfm RECONSTRUCTION.json TRUTH.json
+  pose_files_check.py nerfstudio TRANSFORMS.json TRUTH.json
 
 TRUTH.json is the path as the test wrote it by hand (ARCHITECTURE.md's path file, plus what the check needs):
 {"frame_rate": r, "camera_height_m": h, "anchor": null | {"rotation_deg": a, "scale": s, "origin": [x, y]},
@@ -17,6 +18,12 @@ equirectangular convention gives their pixel) are projected through OpenSfM's sp
 documentation writes it (doc/source/geometry.rst: lon = atan(x/z), lat = atan(-y/sqrt(x^2+z^2)), normalised
 (lon/2pi, -lat/2pi), pixel = normalised * max(w, h) + ((w-1)/2, (h-1)/2), x_cam = R x_world + t with R from
 the angle-axis "rotation"). Prints the worst pixel error; fails above 1e-6 px.
+
+nerfstudio: for pixels of each keyframe image, the world ray nerfstudio's EQUIRECTANGULAR camera shoots
+(cameras.py: pixel centre (x, y), coord = ((x - cx) / fl_x, -(y - cy) / fl_y), theta = -pi coord_x,
+phi = pi (1/2 - coord_y), d = (-sin theta sin phi, cos phi, -cos theta sin phi), world = R d from
+"transform_matrix") must be the bearing ARCHITECTURE.md gives that pixel from the keyframe's heading, and the
+ray's origin the keyframe's position. Fails above 1e-9.
 """
 import json
 import math
@@ -163,13 +170,59 @@ def check_opensfm(path, truth):
     print("opensfm: %d shots, %d points, worst reprojection %.2e px" % (len(rec["shots"]), checked, worst))
 
 
+def check_nerfstudio(path, truth):
+    with open(path) as f:
+        transforms = json.load(f)
+    if transforms.get("camera_model") != "EQUIRECTANGULAR":
+        fail("camera_model %r" % transforms.get("camera_model"))
+    w, h = transforms["w"], transforms["h"]
+    if (w, h) != (truth["width"], truth["height"]):
+        fail("size %dx%d, images are %dx%d" % (w, h, truth["width"], truth["height"]))
+    fx, fy, cx, cy = transforms["fl_x"], transforms["fl_y"], transforms["cx"], transforms["cy"]
+    by_file = {frame["file_path"]: frame for frame in transforms["frames"]}
+    worst = 0.0
+    checked = 0
+    for frame in truth["frames"]:
+        if "shot" not in frame:
+            continue
+        entry = by_file.get("images/" + frame["shot"])
+        if entry is None:
+            fail("no frame for images/%s" % frame["shot"])
+        m = entry["transform_matrix"]
+        wx, wy, heading = world_of(truth, frame["x"], frame["y"], frame["heading_deg"])
+        origin = [m[0][3], m[1][3], m[2][3]]
+        if max(abs(a - b) for a, b in zip(origin, [wx, wy, truth["camera_height_m"]])) > 1e-9:
+            fail("%s: origin %r" % (frame["shot"], origin))
+        for col in (0, 1, w // 4, w // 2 - 1, w // 2, 3 * w // 4 + 3, w - 1):
+            for row in (0, h // 5, h // 2 - 1, h // 2, h - 2, h - 1):
+                x, y = col + 0.5, row + 0.5  # nerfstudio: rays through pixel centres
+                coord_x, coord_y = (x - cx) / fx, -(y - cy) / fy
+                theta, phi = -math.pi * coord_x, math.pi * (0.5 - coord_y)
+                d = [-math.sin(theta) * math.sin(phi), math.cos(phi), -math.cos(theta) * math.sin(phi)]
+                ray = [sum(m[i][j] * d[j] for j in range(3)) for i in range(3)]
+                # ARCHITECTURE.md: azimuth from the column, elevation from the row, world angle heading - azimuth
+                a = x / w * 2 * math.pi - math.pi
+                e = math.pi / 2 - y / h * math.pi
+                world_angle = math.radians(heading) - a
+                expected = [math.cos(e) * math.cos(world_angle), math.cos(e) * math.sin(world_angle), math.sin(e)]
+                error = max(abs(p - q) for p, q in zip(ray, expected))
+                worst = max(worst, error)
+                if error > 1e-9:
+                    fail("%s: pixel (%d, %d) ray %r, expected %r" % (frame["shot"], col, row, ray, expected))
+                checked += 1
+    if checked == 0:
+        fail("no frame checked")
+    print("nerfstudio: %d frames, %d rays, worst direction error %.2e" % (len(by_file), checked, worst))
+
+
 def main():
-    if len(sys.argv) != 4 or sys.argv[1] not in ("tum", "opensfm"):
+    checks = {"tum": check_tum, "opensfm": check_opensfm, "nerfstudio": check_nerfstudio}
+    if len(sys.argv) != 4 or sys.argv[1] not in checks:
         print(__doc__)
         sys.exit(2)
     with open(sys.argv[3]) as f:
         truth = json.load(f)
-    (check_tum if sys.argv[1] == "tum" else check_opensfm)(sys.argv[2], truth)
+    checks[sys.argv[1]](sys.argv[2], truth)
 
 
 main()
