@@ -122,7 +122,7 @@ std::string path_kml(const Project& project) {
       xml_escape(project.tour.title) + "</name>\n";
   kml += "<Placemark>\n<name>Path</name>\n<MultiGeometry>\n";
   for (const std::vector<GeoFrame>& piece : by_piece(frames)) {
-    // altitudeMode absolute: the anchor's altitude is above the ellipsoid, not above the terrain.
+    // altitudeMode absolute: the anchor's altitude is the camera's datum, not a height above the terrain.
     kml += "<LineString><altitudeMode>absolute</altitudeMode><coordinates>\n";
     for (const GeoFrame& f : piece) kml += kml_coordinates(f.where) + "\n";
     kml += "</coordinates></LineString>\n";

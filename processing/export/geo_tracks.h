@@ -16,7 +16,9 @@ enum class GeoTrackFiles { kOff, kAuto, kOn };
 
 struct Wgs84Position {
   double latitude_deg = 0.0, longitude_deg = 0.0;
-  double altitude_m = 0.0;  // above the ellipsoid, as the anchor's altitude is
+  // In the anchor's own altitude datum (EXIF and KML read it as above sea level); LocalCartesian treats it
+  // as ellipsoidal, which over a building differs from adding the height by well under a millimetre.
+  double altitude_m = 0.0;
 };
 
 // A point `height_m` above the plan point (x, y) (the floor), on Earth through the anchor.
