@@ -1,5 +1,6 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
+//  [--quality 85] [--pannellum] [--geojson] [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio]
+//  [--no-photo-metadata] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
 //  [--no-rig-fill]]
 //  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
 //  people who walked through and without the rig: processing/cleanplate).
@@ -21,6 +22,8 @@ Command add_export_command(CLI::App& parent) {
     int max_size = 0, preview_size = 0, quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
     bool no_rig_fill = false, blur_faces = false;
+    bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, nerfstudio = false,
+         no_photo_metadata = false;
     std::string nadir, rig_mask;
   };
   auto o = std::make_shared<Options>();
@@ -33,6 +36,18 @@ Command add_export_command(CLI::App& parent) {
   sub->add_option("--quality", o->quality, "JPEG quality 1..100 (default: the project's, 85)");
   sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
+  CLI::Option* kml_gpx = sub->add_flag(
+      "--kml-gpx", o->kml_gpx,
+      "Write path.kml and path.gpx in WGS84 (an error without a geo-anchor; by default they are "
+      "written whenever the project has one)");
+  sub->add_flag("--no-kml-gpx", o->no_kml_gpx, "Leave out path.kml and path.gpx")->excludes(kml_gpx);
+  sub->add_flag("--tum", o->tum, "Also write trajectory.tum (TUM RGB-D format: the whole path in the plan)");
+  sub->add_flag("--opensfm", o->opensfm,
+                "Also write reconstruction.json: the keyframes as OpenSfM spherical cameras");
+  sub->add_flag("--nerfstudio", o->nerfstudio,
+                "Also write transforms.json: the keyframes as nerfstudio EQUIRECTANGULAR cameras");
+  sub->add_flag("--no-photo-metadata", o->no_photo_metadata,
+                "Leave the GPano XMP and EXIF GPS out of the keyframe JPEGs");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
   sub->add_flag("--clean-plates", o->clean_plates,
                 "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
@@ -56,6 +71,12 @@ Command add_export_command(CLI::App& parent) {
             if (o->quality > 0) options.jpeg_quality = o->quality;
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
+            if (o->kml_gpx) options.kml_gpx = GeoTrackFiles::kOn;
+            if (o->no_kml_gpx) options.kml_gpx = GeoTrackFiles::kOff;
+            options.tum = options.tum || o->tum;
+            options.opensfm = options.opensfm || o->opensfm;
+            options.nerfstudio = options.nerfstudio || o->nerfstudio;
+            options.photo_metadata = !o->no_photo_metadata;
             options.offline_images = !o->http_only;
             KeyframeCleaning& cleaning = options.cleaning;
             cleaning.clean_plates = cleaning.clean_plates || o->clean_plates;

@@ -191,10 +191,15 @@ std::string PhotoMetadata::partial_reason() const {
   return {};
 }
 
+std::unique_lock<std::mutex> lock_exiv2() {
+  std::unique_lock<std::mutex> lock(exiv2_mutex());
+  initialise_exiv2();
+  return lock;
+}
+
 PhotoMetadata read_photo_metadata(const std::string& path) {
   PhotoMetadata m;
-  std::lock_guard<std::mutex> lock(exiv2_mutex());
-  initialise_exiv2();
+  const std::unique_lock<std::mutex> lock = lock_exiv2();
   try {
     Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path);
     if (!image.get()) {

@@ -7,6 +7,7 @@
 // Missing metadata is normal and never an error: the fields stay empty. A file exiv2 cannot parse, or a
 // tag whose value makes no sense (a month 13, a latitude of 95 degrees), leaves the fields empty and says
 // why in `notes`.
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,6 +36,11 @@ struct PhotoMetadata {
   // a full sphere or says nothing, else the reason, e.g. "GPano: cropped to 4000 x 1500 of 4000 x 2000".
   std::string partial_reason() const;
 };
+
+// exiv2 0.27's XMP toolkit is not thread-safe: every use of exiv2 holds this one lock (reading stills here,
+// tagging exported keyframes in processing/export/keyframe_metadata.h). The first call initialises the XMP
+// parser and mutes exiv2's warnings on stderr.
+std::unique_lock<std::mutex> lock_exiv2();
 
 // Reads the metadata of an image file (JPEG, PNG, TIFF, WebP; whatever exiv2 knows). Never throws: a file
 // that cannot be read gives empty fields and a note.

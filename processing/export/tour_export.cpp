@@ -13,9 +13,13 @@
 #include "model/atomic_file.h"
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
+#include "processing/export/keyframe_metadata.h"
+#include "processing/export/nerfstudio_transforms.h"
+#include "processing/export/opensfm_reconstruction.h"
 #include "processing/export/player_assets.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
+#include "processing/export/trajectory_formats.h"
 #include "processing/export/zip_writer.h"
 #include "processing/hotspots/hotspot_validation.h"
 #include "rig/synthetic_camera.h"
@@ -231,6 +235,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   if (project.path.empty()) throw Error("export: the project has no camera path (track or import one first)");
   if (project.keyframes.empty()) throw Error("export: the project has no keyframes (run sampling first)");
   require_placed(project.path, "export");
+  const bool geo_tracks = wants_geo_tracks(options.kml_gpx, project);  // before any work: may throw
   auto report_progress = [&](double fraction, const std::string& stage) {
     progress.checkpoint(fraction, stage);
   };
@@ -277,8 +282,12 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     const std::string stem = "images/" + frame_stem(frame);
     files.preview = stem + "_preview.jpg";
     files.full = stem + "_full.jpg";
-    const std::vector<unsigned char> preview = encode_jpeg(image, preview_width, options.jpeg_quality);
-    const std::vector<unsigned char> full = encode_jpeg(image, full_width, options.jpeg_quality);
+    auto encode = [&](int width, const std::string& name) {
+      const std::vector<unsigned char> jpeg = encode_jpeg(image, width, options.jpeg_quality);
+      return options.photo_metadata ? with_photo_tags(jpeg, keyframe_photo_tags(project, frame), name) : jpeg;
+    };
+    const std::vector<unsigned char> preview = encode(preview_width, files.preview);
+    const std::vector<unsigned char> full = encode(full_width, files.full);
     if (options.offline_images) {
       files.preview_script = stem + "_preview.js";
       files.full_script = stem + "_full.js";
@@ -338,6 +347,18 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   if (options.geojson)
     package.add("path.geojson",
                 path_geojson(project).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+
+  if (geo_tracks) {
+    package.add("path.kml", path_kml(project));
+    package.add("path.gpx", path_gpx(project));
+  }
+  if (options.tum) package.add("trajectory.tum", tum_trajectory(project));
+  if (options.opensfm)
+    for (auto& [name, data] : opensfm_files(project, images, full_width, full_width / 2))
+      package.add(name, data);
+  if (options.nerfstudio)
+    package.add("transforms.json",
+                nerfstudio_transforms(project, images, full_width, full_width / 2).dump(1) + "\n");
 
   report_progress(0.95, "writing package");
   for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);

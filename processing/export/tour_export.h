@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "model/project.h"
+#include "processing/export/geo_tracks.h"
 #include "processing/export/keyframe_cleaner.h"
 #include "processing/util/progress.h"
 
@@ -24,6 +25,13 @@ struct TourExportOptions {
   int jpeg_quality = 85;    // 1..100
   bool pannellum = false;   // also write pannellum.json (one scene per keyframe, linked along the path)
   bool geojson = false;     // also write path.geojson in WGS84 (needs a valid geo-anchor)
+  // path.kml and path.gpx in WGS84 (geo_tracks.h): by default whenever the project is georeferenced.
+  GeoTrackFiles kml_gpx = GeoTrackFiles::kAuto;
+  bool tum = false;         // also write trajectory.tum, the whole path (trajectory_formats.h)
+  bool opensfm = false;     // also write reconstruction.json, the keyframes (opensfm_reconstruction.h)
+  bool nerfstudio = false;  // also write transforms.json, the keyframes (nerfstudio_transforms.h)
+  // GPano XMP and, when georeferenced, EXIF GPS in every keyframe JPEG (keyframe_metadata.h).
+  bool photo_metadata = true;
   // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
   // script holding it as a data URI. Off only for packages that will always be served over http.
   bool offline_images = true;

@@ -21,6 +21,12 @@ grep -q "absent.plenopath" "$tmp/err.txt" || fail "missing project message: $(ca
 [[ $code -eq 1 ]] || fail "missing nadir image: exit $code"
 grep -q "no-logo.png" "$tmp/err.txt" || fail "nadir image message: $(cat "$tmp/err.txt")"
 
+# --kml-gpx insists on the map files, --no-kml-gpx leaves them out: both at once is a usage error.
+"$cli" export --project x --out y --kml-gpx --no-kml-gpx 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 2 ]] || fail "--kml-gpx with --no-kml-gpx: exit $code"
+grep -q "excludes" "$tmp/err.txt" || fail "--kml-gpx/--no-kml-gpx message: $(cat "$tmp/err.txt")"
+"$cli" export --help | grep -q -- "--opensfm" || fail "export --help does not list --opensfm"
+
 "$cli" export --out "$tmp/tour" 2>/dev/null; code=$?
 [[ $code -eq 2 ]] || fail "missing --project: exit $code"
 "$cli" export --project x --out y --quality abc 2>/dev/null; code=$?
