@@ -13,7 +13,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 shots=$PWD/player_scale; rm -rf "$shots"; mkdir -p "$shots"
 
 "$cli" make-sample --out "$tmp/office" --frames 30 --size 4096x2048 > /dev/null || fail "make-sample exit $?"
-"$cli" render --plan "$tmp/office/office.dxf" --path "$tmp/office/office_path.json" --size 4096x2048 \
+"$cli" render --plan "$tmp/office/office.dxf" --path "$tmp/office/office_path.json" --size 4096x2048 --depth \
   --out "$tmp/office/capture" --quiet || fail "render exit $?"
 "$cli" sample --project "$tmp/office/office.plenopath" --method uniform --count 6 --save > /dev/null \
   || fail "sample exit $?"

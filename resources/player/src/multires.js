@@ -92,7 +92,8 @@ function loadTile(tile) {
     }
   }).catch((e) => {
     tile.failed = true;
-    if (e && e.name === 'SecurityError') tilesBlocked = true;  // every tile would fail alike
+    // Every tile would fail alike (a file:// page): the full equirectangular images take over.
+    if (e && e.name === 'SecurityError' && !tilesBlocked) { tilesBlocked = true; requestFull(player.state.keyframe); }
     console.warn('tile ' + tile.url + ': ' + (e && e.message));
   }).then(done);
   img.onerror = () => { tile.failed = true; console.warn('cannot load tile ' + tile.url); done(); };

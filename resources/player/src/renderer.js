@@ -135,6 +135,7 @@ function touchTexture(k) {
     gl.deleteTexture(old.texture);
     old.texture = null;
     old.textureImage = null;
+    old.textureInfo = null;
     old.textureLevel = 'none';
   }
 }
