@@ -151,10 +151,25 @@ PIXELS = """(() => {
   return {mean, std: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), hash, w, h};
 })()"""
 
+def settled_pixels(b, timeout=10):
+    """The picture once it stays the same for 0.4 s (a hotspot's poster or an image may still be arriving)."""
+    deadline, last = time.time() + timeout, b.evaluate(PIXELS)
+    while time.time() < deadline:
+        time.sleep(0.4)
+        now = b.evaluate(PIXELS)
+        if now['hash'] == last['hash']:
+            return now
+        last = now
+    return last
+
+
 def check_hotspot_click(b, spot):
     fired_before = b.evaluate("window.plenopathPlayer.events.length")
     b.click(spot['x'], spot['y'])
-    time.sleep(0.3)
+    # Waited for by state: on a loaded machine the click lands late, and a label click then would undo it.
+    deadline = time.time() + 5.0
+    while time.time() < deadline and b.evaluate("window.plenopathPlayer.events.length") == fired_before:
+        time.sleep(0.1)
     via = 'canvas'
     if b.evaluate("window.plenopathPlayer.events.length") == fired_before:
         b.click(spot['lx'], spot['ly'])
@@ -177,8 +192,12 @@ def check_swap_sequence(b, spot, before, prefix):
     b.wait_for("(() => { const h = window.plenopathPlayer.hotspots.find(s => s.swapped);"
                " return !!(h && h.actionImage && h.actionImage.readyState >= 2); })()", timeout=15,
                what='the image sequence to load')
-    time.sleep(0.15)
+    # The first frame of the sequence on screen: waited for by state (a loaded machine draws late).
     early = b.evaluate(PIXELS)
+    deadline = time.time() + 5.0
+    while early['hash'] == before['hash'] and time.time() < deadline:
+        time.sleep(0.05)
+        early = b.evaluate(PIXELS)
     b.wait_for("window.plenopathPlayer.hotspots.find(s => s.swapped).actionImage.ended", timeout=15,
                what='the image sequence to play to its end')
     time.sleep(0.5)
@@ -196,7 +215,7 @@ def check_swap_sequence(b, spot, before, prefix):
     # The second click, then the picture: waited for by state, not by time (a loaded machine renders late).
     fired = b.evaluate("window.plenopathPlayer.events.length")
     b.click(spot['x'], spot['y'])
-    deadline = time.time() + 2.0
+    deadline = time.time() + 5.0
     while time.time() < deadline and b.evaluate("window.plenopathPlayer.events.length") == fired:
         time.sleep(0.1)
     if b.evaluate("window.plenopathPlayer.events.length") == fired:
@@ -460,7 +479,7 @@ def main():
         if spot is None and '--no-hotspots' not in sys.argv:
             fail('no hotspot is visible from the start view')
         if spot is not None:
-            before = b.evaluate(PIXELS)
+            before = settled_pixels(b)
             via = check_hotspot_click(b, spot)
             if '--swap-sequence' in sys.argv:
                 if via != 'canvas':
