@@ -11,7 +11,7 @@ packages=(
   libeigen3-dev libcgal-dev libceres-dev libgeographiclib-dev libdxflib-dev libexpat1-dev libexiv2-dev libarchive-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth x11-utils imagemagick gpsbabel ffmpeg libimage-exiftool-perl
-  python3 python3-jsonschema python3-ezdxf povray povray-examples blender chromium fonts-dejavu-core fonts-wqy-microhei
+  python3 python3-jsonschema python3-ezdxf python3-numpy povray povray-examples blender chromium fonts-dejavu-core fonts-wqy-microhei
 )
 
 missing=()

@@ -6,7 +6,7 @@
 // heading - phi. Every text from the tour is inserted with textContent, never as HTML.
 //
 // Built from resources/player/src/ by cmake/JoinFiles.cmake: begin.js, enums.js (generated from
-// resources/schema/enums.json), tour_data.js, renderer.js, hotspots.js, walk.js, ui.js, end.js, joined in
-// that order into one function scope (this file opens it, end.js closes it). Edit those files, not this one.
+// resources/schema/enums.json), tour_data.js, renderer.js, textures.js, multires.js, hotspots.js, walk.js,
+// frame_probe.js, orientation.js, ui.js, end.js, joined in that order into one function scope (this file opens it, end.js closes it). Edit those files, not this one.
 'use strict';
 (function () {

@@ -13,14 +13,16 @@ const ROOM_RADIUS_M = 3.0;     // the room proxy of the walk between keyframes (
 const ROOM_HEIGHT_M = 2.7;
 
 const canvas = $('view');
-const gl = canvas.getContext('webgl', { antialias: true, xrCompatible: true, preserveDrawingBuffer: true });
+// WebGL2 where there is one (mipmaps of any size), else WebGL1; the shaders are GLSL ES 1.00 for both.
+const GL_OPTIONS = { antialias: true, xrCompatible: true, preserveDrawingBuffer: true };
+const gl = canvas.getContext('webgl2', GL_OPTIONS) || canvas.getContext('webgl', GL_OPTIONS);
 const BACKGROUND_VS = 'attribute vec2 a_pos; varying vec2 v_ndc;' +
   'void main(){ v_ndc = a_pos; gl_Position = vec4(a_pos, 0.0, 1.0); }';
 const BACKGROUND_FS = 'precision highp float; varying vec2 v_ndc;' +
   'uniform mat3 u_ray; uniform sampler2D u_tex0; uniform sampler2D u_tex1;' +
   'uniform float u_heading0; uniform float u_heading1; uniform float u_mix;' +
   'uniform vec2 u_off0; uniform vec2 u_off1; uniform float u_radius0; uniform float u_radius1;' +
-  'uniform float u_eye; uniform float u_room;' +
+  'uniform float u_eye; uniform float u_room; uniform vec2 u_look;' +
   'const float PI = 3.141592653589793;' +
   // The point of the room proxy that the viewer, `off` from the keyframe, sees along d (unit), as seen
   // from the keyframe: the nearest of the round wall and the floor or ceiling.
@@ -31,9 +33,11 @@ const BACKGROUND_FS = 'precision highp float; varying vec2 v_ndc;' +
   '  if (d.z < -1e-6) t = min(t, -u_eye / d.z);' +
   '  if (d.z > 1e-6) t = min(t, (u_room - u_eye) / d.z);' +
   '  return vec3(off, 0.0) + t * d; }' +
-  'vec4 equirect(sampler2D t, float heading, vec3 d){' +
-  '  float phi = atan(d.y, d.x); float el = atan(d.z, length(d.xy));' +
-  '  float u = fract((heading - phi + PI) / (2.0 * PI)); float v = (0.5 * PI - el) / PI;' +
+  // The azimuth is measured from the view direction (u_look), so that atan's jump of 2 pi lies behind the
+  // viewer, and the texture wraps (REPEAT): no seam column where the mipmap level would jump.
+  'vec4 equirect(sampler2D t, float shift, vec3 d){' +
+  '  float phi = atan(dot(d.xy, vec2(-u_look.y, u_look.x)), dot(d.xy, u_look)); float el = atan(d.z, length(d.xy));' +
+  '  float u = (shift - phi + PI) / (2.0 * PI); float v = (0.5 * PI - el) / PI;' +
   '  return texture2D(t, vec2(u, v)); }' +
   'void main(){ vec3 d = normalize(u_ray * vec3(v_ndc, 1.0));' +
   '  gl_FragColor = mix(equirect(u_tex1, u_heading1, proxy(u_off1, u_radius1, d)),' +
@@ -71,7 +75,7 @@ function initGl() {
   if (!gl) throw new Error('This browser has no WebGL: the tour cannot be shown.');
   background = makeProgram(BACKGROUND_VS, BACKGROUND_FS, ['a_pos'],
     ['u_ray', 'u_tex0', 'u_tex1', 'u_heading0', 'u_heading1', 'u_mix', 'u_off0', 'u_off1', 'u_radius0',
-      'u_radius1', 'u_eye', 'u_room']);
+      'u_radius1', 'u_eye', 'u_room', 'u_look']);
   quadProgram = makeProgram(QUAD_VS, QUAD_FS, ['a_world', 'a_uv'], ['u_view_proj', 'u_media', 'u_tint']);
   // Sampler units never change.
   gl.useProgram(background.program);
@@ -97,15 +101,32 @@ function makeTexture(source) {
   return t;
 }
 
-// Keyframe textures: an LRU of GPU textures, so long tours stay within GPU memory.
+// Keyframe textures: an LRU of GPU textures, so long tours stay within GPU memory. A keyframe's image (the
+// preview, then the full one) is decoded and uploaded off the frame loop; until it is, the keyframe keeps the
+// texture it had (or none: then it is not drawn). k.textureLevel is the level the texture shows.
 const textureOrder = [];
 function keyframeTexture(k) {
-  if (!k.image) return null;
-  if (!k.texture || k.textureLevel !== k.level) {
-    if (k.texture) gl.deleteTexture(k.texture);
-    k.texture = makeTexture(k.image);
-    k.textureLevel = k.level;
+  if (k.image && k.textureImage !== k.image && k.decodingImage !== k.image) {
+    const image = k.image, level = k.level;
+    k.decodingImage = image;
+    decodeForTexture(image).then((source) => {
+      if (k.decodingImage !== image) { if (source.close) source.close(); return; }
+      k.decodingImage = null;
+      const made = makeMipmappedTexture(source, true);
+      if (k.texture) gl.deleteTexture(k.texture);
+      k.texture = made.texture;
+      k.textureInfo = { width: made.width, height: made.height, mipmaps: made.mipmaps, repeat: made.repeat };
+      k.textureImage = image;
+      k.textureLevel = level;
+      touchTexture(k);
+      requestDraw();
+    }).catch((e) => { if (k.decodingImage === image) k.decodingImage = null; console.warn('keyframe ' + k.frame + ': ' + e.message); });
   }
+  if (k.texture) touchTexture(k);
+  return k.texture || null;
+}
+
+function touchTexture(k) {
   const at = textureOrder.indexOf(k);
   if (at >= 0) textureOrder.splice(at, 1);
   textureOrder.push(k);
@@ -113,8 +134,10 @@ function keyframeTexture(k) {
     const old = textureOrder.shift();
     gl.deleteTexture(old.texture);
     old.texture = null;
+    old.textureImage = null;
+    old.textureInfo = null;
+    old.textureLevel = 'none';
   }
-  return k.texture;
 }
 
 // Camera basis in the plan frame for a world yaw (CCW from +X) and pitch.
@@ -162,6 +185,10 @@ function walkBracket(s) {
 // The background: keyframe k0 blended over k1 by `mix`, each seen from the viewer at plan point `at`
 // (null: from the keyframe itself).
 function drawBackground(ray, k0, k1, mix, at) {
+  // A keyframe whose texture is not uploaded yet gives way to the other one.
+  const t0 = keyframeTexture(k0), t1 = k1 === k0 ? t0 : keyframeTexture(k1);
+  if (!t0 && !t1) return false;
+  if (!t0) { k0 = k1; mix = 1; } else if (!t1) { k1 = k0; }
   const off = (k) => at ? [at.x - k.x, at.y - k.y] : [0, 0];
   const radius = (o) => Math.max(ROOM_RADIUS_M, Math.hypot(o[0], o[1]) + 1.0);
   const off0 = off(k0), off1 = off(k1);
@@ -172,11 +199,18 @@ function drawBackground(ray, k0, k1, mix, at) {
   gl.vertexAttribPointer(pos, 2, gl.FLOAT, false, 0, 0);
   gl.uniformMatrix3fv(background.uniform.u_ray, false, ray);
   gl.activeTexture(gl.TEXTURE0);
-  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(k0));
+  gl.bindTexture(gl.TEXTURE_2D, k0.texture);
   gl.activeTexture(gl.TEXTURE1);
-  gl.bindTexture(gl.TEXTURE_2D, keyframeTexture(k1) || keyframeTexture(k0));
-  gl.uniform1f(background.uniform.u_heading0, k0.heading);
-  gl.uniform1f(background.uniform.u_heading1, k1.heading);
+  gl.bindTexture(gl.TEXTURE_2D, k1.texture);
+  // Forward of the view in the plan, and each keyframe's heading relative to it, within (-pi, pi].
+  // Looking up or down the forward's level part vanishes: the screen's up (down when looking up) stands in.
+  const upNorm = Math.hypot(ray[3], ray[4], ray[5]) || 1, fz = ray[8] / (Math.hypot(ray[6], ray[7], ray[8]) || 1);
+  const look = [ray[6] - fz * ray[3] / upNorm, ray[7] - fz * ray[4] / upNorm];
+  const lookAngle = Math.atan2(look[1], look[0]), norm = Math.hypot(look[0], look[1]);
+  const relative = (heading) => Math.atan2(Math.sin(heading - lookAngle), Math.cos(heading - lookAngle));
+  gl.uniform2f(background.uniform.u_look, norm > 1e-9 ? look[0] / norm : 1, norm > 1e-9 ? look[1] / norm : 0);
+  gl.uniform1f(background.uniform.u_heading0, relative(k0.heading));
+  gl.uniform1f(background.uniform.u_heading1, relative(k1.heading));
   gl.uniform1f(background.uniform.u_mix, mix);
   gl.uniform2fv(background.uniform.u_off0, off0);
   gl.uniform2fv(background.uniform.u_off1, off1);
@@ -187,6 +221,7 @@ function drawBackground(ray, k0, k1, mix, at) {
   gl.disable(gl.DEPTH_TEST);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
   gl.disableVertexAttribArray(pos);
+  return true;
 }
 
 let fade = { from: -1, start: 0 };
@@ -202,7 +237,11 @@ function drawScene(width, height, ray, viewProj) {
   const previous = keyframes[fade.from] || current;
   const t = Math.min(1, (performance.now() - fade.start) / FADE_MS);
   drawBackground(ray, current, previous, t, null);
-  if (t >= 1) drawHotspots(current, viewProj);
+  player.state.textureLevel = current.texture ? current.textureLevel : 'none';
+  if (t >= 1) {
+    drawTiles(current, ray, viewProj, height);
+    drawHotspots(current, viewProj);
+  }
 }
 
 // The texture a hotspot shows: its media, or what its swap action put in its place. A video's current frame

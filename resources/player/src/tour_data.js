@@ -6,7 +6,8 @@ const DEG = PI / 180;
 
 const $ = (id) => document.getElementById(id);
 const player = {
-  state: { yaw: 0, pitch: 0, fov: 75, s: 0, keyframe: -1, level: 'none', moving: false },
+  // level: the best image loaded for the keyframe shown; textureLevel: the one on screen (decoded, uploaded).
+  state: { yaw: 0, pitch: 0, fov: 75, s: 0, keyframe: -1, level: 'none', textureLevel: 'none', moving: false },
   events: [],                  // fired hotspot actions, newest last (for embedding pages and tests)
   get hotspots() { return hotspots; },  // their live state: swapped, loaded media (for tests)
   ready: null,

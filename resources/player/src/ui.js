@@ -155,13 +155,16 @@ function bindDeviceOrientation() {
   const button = $('gyro');
   button.hidden = false;
   let enabled = false, yawOffset = null, lastWalk = 0;
+  // The device's compass is not the plan's north: the first reading keeps the view's yaw, later ones turn it.
+  // The screen's angle is read at each event, so turning to landscape keeps the view where it looks.
   const onOrientation = (e) => {
-    if (e.alpha === null) return;
-    if (yawOffset === null) yawOffset = player.state.yaw - e.alpha * DEG;
-    player.state.yaw = yawOffset + e.alpha * DEG;
-    player.state.pitch = Math.max(-85 * DEG, Math.min(85 * DEG, (e.beta - 90) * DEG));
+    if (e.alpha === null || e.beta === null || e.gamma === null) return;
+    const view = viewFromDeviceOrientation(e.alpha, e.beta, e.gamma, screenAngle());
+    if (yawOffset === null) yawOffset = player.state.yaw - view.yaw;
+    player.state.yaw = yawOffset + view.yaw;
+    player.state.pitch = Math.max(-85 * DEG, Math.min(85 * DEG, view.pitch));
     const now = performance.now();
-    if (Math.abs(e.gamma) > 20 && now - lastWalk > 700) { lastWalk = now; walk(e.gamma > 0 ? 1 : -1); }
+    if (Math.abs(view.roll) > 20 * DEG && now - lastWalk > 700) { lastWalk = now; walk(view.roll > 0 ? 1 : -1); }
     requestDraw();
   };
   button.addEventListener('click', () => {
@@ -244,6 +247,7 @@ function requestDraw() {
 
 function frame() {
   drawRequested = false;
+  probeFrameStart();
   const dpr = window.devicePixelRatio || 1;
   const w = Math.round(canvas.clientWidth * dpr), h = Math.round(canvas.clientHeight * dpr);
   if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
@@ -264,6 +268,7 @@ function frame() {
   const playing = (m) => m instanceof HTMLVideoElement && !m.paused && !m.ended;
   const video = hotspots.some((s) => playing(s.mediaElement) || (s.swapped && playing(s.actionImage)));
   if (animating || fading || video) requestDraw();
+  probeFrameEnd(drawRequested);
 }
 
 // ---------------------------------------------------------------- start
@@ -284,6 +289,11 @@ function start(data) {
 }
 
 player.walk = walk;
+// Tests and embedding pages: the GPU's limits, the keyframe textures on the GPU, the cube tiles' state.
+player.gpu = () => Object.assign({ version: gpuLimits().webgl2 ? 2 : 1 }, gpuLimits(), { anisotropy: !!gpuLimits().anisotropy });
+player.textures = () => keyframes.filter((k) => k.texture).map((k) => Object.assign({ frame: k.frame, level: k.textureLevel }, k.textureInfo));
+player.tiles = multires;
+player.zoomTo = (fov) => { player.state.fov = Math.max(20, Math.min(110, fov)); requestDraw(); };
 player.walkToFrame = (frame) => { const f = frameWithIndex(frame); if (f) walkTo(f.s); };
 // Tests: looking from keyframe a toward keyframe c, the view at keyframe b's spot as the walk from a to c
 // draws it (the room proxy) and as a plain cross-fade would, each against b's own picture there: mean
@@ -291,7 +301,7 @@ player.walkToFrame = (frame) => { const f = frameWithIndex(frame); if (f) walkTo
 // view stays on the canvas (for a screenshot) until the next draw.
 player.transitionError = (a, b, c, show) => {
   const ka = keyframes[a], kb = keyframes[b], kc = keyframes[c];
-  if (!ka || !kb || !kc || !ka.image || !kb.image || !kc.image) return null;
+  if (!ka || !kb || !kc || !keyframeTexture(ka) || !keyframeTexture(kb) || !keyframeTexture(kc)) return null;
   player.state.yaw = Math.atan2(kc.y - ka.y, kc.x - ka.x);
   player.state.pitch = 0;
   const w = canvas.width, h = canvas.height;

@@ -45,7 +45,8 @@ function setKeyframe(index) {
 function requestFull(index) {
   for (const i of [index, index + 1, index - 1, index + 2, index - 2]) {
     const k = keyframes[i];
-    if (!k || k.level === 'full' || k.fullRequested) continue;
+    // A keyframe with cube tiles shows them at rest: its full equirectangular image is not needed then.
+    if (!k || k.level === 'full' || k.fullRequested || (hasTiles(k) && !tilesBlocked)) continue;
     k.fullRequested = true;
     loadImage(k.full, k.full_script).then((img) => {
       k.image = img; k.level = 'full';
@@ -63,10 +64,10 @@ function loadPreviews() {
     const k = byRank[next++];
     return loadImage(k.preview, k.preview_script).then((img) => {
       if (k.level !== 'full') { k.image = img; k.level = 'preview'; }
-      if (player.state.keyframe < 0 || !keyframes[player.state.keyframe].image) {
-        const i = nearestKeyframe(player.state.s, true);
-        if (i >= 0) { player.state.keyframe = -1; setKeyframe(i); }
-      }
+      // Previews arrive in progressive order (coarse to fine), not along the path: the first one may be the
+      // path's far end. Until the viewer moves, the keyframe shown is the nearest one loaded so far.
+      const i = nearestKeyframe(player.state.s, true);
+      if (i >= 0 && i !== player.state.keyframe && !animation) { player.state.keyframe = -1; setKeyframe(i); }
       requestDraw();
     }).catch((e) => console.warn(e.message)).then(worker);
   };

@@ -95,7 +95,8 @@ TEST(PlayerAssets, ThePlayerIsItsModulesInOrder) {
   const std::string js = asset("player.js");
   std::size_t at = 0;
   for (const char* module :
-       {"begin.js", "enums.js", "tour_data.js", "renderer.js", "hotspots.js", "walk.js", "ui.js", "end.js"}) {
+       {"begin.js", "enums.js", "tour_data.js", "renderer.js", "textures.js", "multires.js", "hotspots.js",
+        "walk.js", "frame_probe.js", "orientation.js", "ui.js", "end.js"}) {
     const std::size_t found = js.find(std::string("// ==== ") + module + "\n", at);
     ASSERT_NE(found, std::string::npos) << module << " missing or out of order";
     at = found;
