@@ -105,11 +105,15 @@ const CleanPlateEdit* TourSettings::clean_plate_edit(int frame) const {
 
 bool operator==(const TourSettings& l, const TourSettings& r) {
   return std::tie(l.title, l.description, l.max_size, l.preview_size, l.jpeg_quality, l.start_frame,
-                  l.export_pannellum, l.export_geojson, l.export_clean_plates, l.nadir_patch, l.nadir_image,
-                  l.blur_faces, l.clean_plate_edits) ==
+                  l.export_pannellum, l.export_geojson, l.export_multires, l.export_marzipano, l.export_psv,
+                  l.export_kml_gpx, l.export_tum, l.export_opensfm, l.export_nerfstudio,
+                  l.export_photo_metadata, l.export_clean_plates, l.nadir_patch, l.nadir_image, l.blur_faces,
+                  l.clean_plate_edits) ==
          std::tie(r.title, r.description, r.max_size, r.preview_size, r.jpeg_quality, r.start_frame,
-                  r.export_pannellum, r.export_geojson, r.export_clean_plates, r.nadir_patch, r.nadir_image,
-                  r.blur_faces, r.clean_plate_edits);
+                  r.export_pannellum, r.export_geojson, r.export_multires, r.export_marzipano, r.export_psv,
+                  r.export_kml_gpx, r.export_tum, r.export_opensfm, r.export_nerfstudio,
+                  r.export_photo_metadata, r.export_clean_plates, r.nadir_patch, r.nadir_image, r.blur_faces,
+                  r.clean_plate_edits);
 }
 
 bool operator==(const Project& l, const Project& r) {

@@ -343,6 +343,14 @@ json tour_to_json(const TourSettings& t, const std::string& base) {
               {"start_frame", t.start_frame},
               {"export_pannellum", t.export_pannellum},
               {"export_geojson", t.export_geojson},
+              {"export_multires", t.export_multires},
+              {"export_marzipano", t.export_marzipano},
+              {"export_psv", t.export_psv},
+              {"export_kml_gpx", t.export_kml_gpx},
+              {"export_tum", t.export_tum},
+              {"export_opensfm", t.export_opensfm},
+              {"export_nerfstudio", t.export_nerfstudio},
+              {"export_photo_metadata", t.export_photo_metadata},
               {"export_clean_plates", t.export_clean_plates},
               {"nadir_patch", to_string(t.nadir_patch)},
               {"blur_faces", t.blur_faces}};
@@ -367,6 +375,14 @@ TourSettings tour_from_json(const JsonReader& r, const std::string& base) {
   t.start_frame = r.integer_or("start_frame", t.start_frame);
   t.export_pannellum = r.boolean_or("export_pannellum", t.export_pannellum);
   t.export_geojson = r.boolean_or("export_geojson", t.export_geojson);
+  t.export_multires = r.boolean_or("export_multires", t.export_multires);
+  t.export_marzipano = r.boolean_or("export_marzipano", t.export_marzipano);
+  t.export_psv = r.boolean_or("export_psv", t.export_psv);
+  t.export_kml_gpx = r.boolean_or("export_kml_gpx", t.export_kml_gpx);
+  t.export_tum = r.boolean_or("export_tum", t.export_tum);
+  t.export_opensfm = r.boolean_or("export_opensfm", t.export_opensfm);
+  t.export_nerfstudio = r.boolean_or("export_nerfstudio", t.export_nerfstudio);
+  t.export_photo_metadata = r.boolean_or("export_photo_metadata", t.export_photo_metadata);
   t.export_clean_plates = r.boolean_or("export_clean_plates", t.export_clean_plates);
   t.nadir_patch = enum_from_json(r, "nadir_patch", t.nadir_patch);
   t.nadir_image = path_resolved_against(r.string_or("nadir_image", ""), base);

@@ -24,8 +24,17 @@ struct TourSettings {
   int preview_size = 1024;  // preview keyframe width, pixels
   int jpeg_quality = 85;
   int start_frame = -1;  // -1 = first keyframe
+  // Files for other viewers and tools, written beside the web player (processing/export/tour_export.h).
   bool export_pannellum = false;
   bool export_geojson = false;
+  bool export_multires = false;       // multi-resolution cube tiles (the player and Pannellum use them)
+  bool export_marzipano = false;      // a Marzipano tour on the cube tiles
+  bool export_psv = false;            // Photo Sphere Viewer virtual tour and map
+  bool export_kml_gpx = true;         // path.kml and path.gpx, when the project is georeferenced
+  bool export_tum = false;            // the path as a TUM trajectory
+  bool export_opensfm = false;        // the keyframes as an OpenSfM reconstruction
+  bool export_nerfstudio = false;     // the keyframes as a nerfstudio transforms.json
+  bool export_photo_metadata = true;  // GPano XMP and EXIF GPS in each keyframe JPEG
   // Keyframes without the people who walked through and without the rig (processing/cleanplate).
   bool export_clean_plates = false;
   NadirPatch nadir_patch = NadirPatch::kBlur;  // with clean plates: what covers the rig nothing saw behind

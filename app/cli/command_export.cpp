@@ -76,7 +76,7 @@ Command add_export_command(CLI::App& parent) {
             options.tum = options.tum || o->tum;
             options.opensfm = options.opensfm || o->opensfm;
             options.nerfstudio = options.nerfstudio || o->nerfstudio;
-            options.photo_metadata = !o->no_photo_metadata;
+            if (o->no_photo_metadata) options.photo_metadata = false;
             options.offline_images = !o->http_only;
             KeyframeCleaning& cleaning = options.cleaning;
             cleaning.clean_plates = cleaning.clean_plates || o->clean_plates;

@@ -49,6 +49,7 @@
 #include "widgets/sampling_panel.h"
 #include "widgets/task_runner.h"
 #include "widgets/timeline.h"
+#include "widgets/tour_export_dialog.h"
 
 namespace plenopath::studio {
 
@@ -84,9 +85,10 @@ MainWindow::MainWindow(QWidget* parent)
   show_error = [this](const QString& title, const QString& message) {
     QMessageBox::critical(this, title, message);
   };
-  ask_export_target = [this](const QString& suggested) {
-    return QFileDialog::getSaveFileName(this, tr("Export tour — a folder name, or a file ending in .zip"),
-                                        suggested, tr("Tour folder (*);;Tour archive (*.zip)"));
+  ask_export = [this](const QString& suggested, const TourSettings& current) {
+    widgets::TourExportDialog dialog(current, suggested, document_->project().geo.valid, this);
+    if (dialog.exec() != QDialog::Accepted) return ExportChoice{};
+    return ExportChoice{dialog.output(), dialog.settings()};
   };
 
   ask_tour_package = [this] {

@@ -6,6 +6,8 @@
 #include <QMessageBox>
 #include <functional>
 
+#include "model/tour_settings.h"
+
 class QLabel;
 class QProgressBar;
 class QToolButton;
@@ -67,8 +69,13 @@ class MainWindow : public QMainWindow {
   // Questions the window asks; tests replace them with fixed answers.
   std::function<bool(const QString& autosave_file)> ask_recovery;
   std::function<QMessageBox::StandardButton()> ask_save_changes;
-  // Where to export a tour (a folder, or a file ending in .zip); empty = cancelled.
-  std::function<QString(const QString& suggested)> ask_export_target;
+  // File > Export tour: where to (a folder, or a file ending in .zip; empty = cancelled) and the tour
+  // settings to export with (the Export tour dialog).
+  struct ExportChoice {
+    QString output;
+    TourSettings settings;
+  };
+  std::function<ExportChoice(const QString& suggested, const TourSettings& current)> ask_export;
   // File > Import tour: the package (a tour.json or a .zip; empty = cancelled), then the project to make.
   std::function<QString()> ask_tour_package;
   std::function<QString(const QString& suggested)> ask_imported_project;

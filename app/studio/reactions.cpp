@@ -168,10 +168,18 @@ void ExportTourReaction::on_triggered() {
   const QString suggested = window_.document().file_name().isEmpty()
                                 ? QStringLiteral("tour")
                                 : QFileInfo(window_.document().file_name()).completeBaseName() + "_tour";
-  const QString output =
-      window_.ask_export_target(QFileInfo(window_.document().file_name()).absoluteDir().filePath(suggested));
-  if (output.isEmpty()) return;
-  const std::string out = output.toStdString();
+  const MainWindow::ExportChoice choice =
+      window_.ask_export(QFileInfo(window_.document().file_name()).absoluteDir().filePath(suggested),
+                         window_.document().project().tour);
+  if (choice.output.isEmpty()) return;
+  // The choices are the project's tour settings (one undo step), so the next export starts from them.
+  if (!(choice.settings == window_.document().project().tour)) {
+    Project after = window_.document().snapshot();
+    after.tour = choice.settings;
+    window_.document().undo_stack()->push(new widgets::ReplacePartsCommand(
+        window_.document(), QObject::tr("Tour export settings"), after, widgets::kSettingsChanged));
+  }
+  const std::string out = choice.output.toStdString();
   window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, Progress& progress) {
     const TourExportOptions options = TourExportOptions::from_project(snapshot, out);
     const TourExportReport report = export_tour(snapshot, options, progress);

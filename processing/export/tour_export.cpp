@@ -172,7 +172,14 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
   o.preview_size = std::min(project.tour.preview_size, project.tour.max_size);
   o.jpeg_quality = project.tour.jpeg_quality;
   o.pannellum = project.tour.export_pannellum;
-  o.geojson = project.tour.export_geojson;
+  // The project's choices for georeferenced files wait for a geo-anchor; asked for explicitly (the command
+  // line's flags), they are an error without one.
+  o.geojson = project.tour.export_geojson && project.geo.valid;
+  o.kml_gpx = project.tour.export_kml_gpx ? GeoTrackFiles::kAuto : GeoTrackFiles::kOff;
+  o.tum = project.tour.export_tum;
+  o.opensfm = project.tour.export_opensfm;
+  o.nerfstudio = project.tour.export_nerfstudio;
+  o.photo_metadata = project.tour.export_photo_metadata;
   o.cleaning = KeyframeCleaning::from_project(project);
   return o;
 }

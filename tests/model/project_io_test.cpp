@@ -100,6 +100,11 @@ Project make_full_project(const fs::path& dir) {
   p.tour.max_size = 2048;
   p.tour.jpeg_quality = 90;
   p.tour.export_geojson = true;
+  p.tour.export_marzipano = true;
+  p.tour.export_psv = true;
+  p.tour.export_kml_gpx = false;  // a default changed: read back as written, not as the default
+  p.tour.export_nerfstudio = true;
+  p.tour.export_photo_metadata = false;
   p.tour.export_clean_plates = true;
   p.tour.nadir_patch = NadirPatch::kImage;
   p.tour.nadir_image = (dir / "media" / "logo.png").string();

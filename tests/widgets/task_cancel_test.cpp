@@ -142,7 +142,9 @@ TEST(TaskCancel, ExportTourWritesNothing) {
       },
       widgets::kKeyframesChanged);
   const QString target = QDir(t.folder).filePath("cancelled_tour");
-  s.window.ask_export_target = [&](const QString&) { return target; };
+  s.window.ask_export = [&](const QString&, const TourSettings& settings) {
+    return studio::MainWindow::ExportChoice{target, settings};
+  };
   QAction* export_tour = action_named(s.window, "Export tour…");
   ASSERT_NE(export_tour, nullptr);
   ASSERT_TRUE(export_tour->isEnabled());

@@ -122,7 +122,9 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   window.show_error = [&](const QString& title, const QString& message) { errors << title + ": " + message; };
   const QString out = QDir::temp().filePath("plenopath_studio_export_tour");
   QDir(out).removeRecursively();
-  window.ask_export_target = [&](const QString&) { return out; };
+  window.ask_export = [&](const QString&, const TourSettings& settings) {
+    return studio::MainWindow::ExportChoice{out, settings};
+  };
   Project project = test::test_project("walk").project;
   project.keyframes.indices = {0, 15, 29};
   window.document().reset(project, test::test_project("walk").project_file);
@@ -153,6 +155,42 @@ TEST(StudioTour, ExportAndWalkFromTheMenus) {
   }));
   EXPECT_EQ(view->navigator().keyframes().size(), 3u);
   view->close();
+  QDir(out).removeRecursively();
+}
+
+// File > Export tour with the dialog's choices: they become the project's tour settings (one undo step),
+// and the export writes the files they ask for.
+TEST(StudioTour, ExportsWithTheChosenSettings) {
+  studio::MainWindow window;
+  window.ask_recovery = [](const QString&) { return false; };
+  window.ask_save_changes = [] { return QMessageBox::Discard; };
+  QStringList errors;
+  window.show_error = [&](const QString& title, const QString& message) { errors << title + ": " + message; };
+  const QString out = QDir::temp().filePath("plenopath_studio_export_settings");
+  QDir(out).removeRecursively();
+  Project project = test::test_project("walk").project;
+  project.keyframes.indices = {0, 15, 29};
+  window.document().reset(project, test::test_project("walk").project_file);
+  window.ask_export = [&](const QString&, const TourSettings& current) {
+    TourSettings chosen = current;
+    chosen.export_tum = true;
+    chosen.export_pannellum = true;
+    return studio::MainWindow::ExportChoice{out, chosen};
+  };
+  window.show();
+  const int undo_steps = window.document().undo_stack()->count();
+  action_named(window, "Export tour")->trigger();
+  ASSERT_TRUE(test::wait_until([&] {
+    return !window.tasks().is_running() && QFile::exists(out + "/tour.json");
+  })) << errors.join("\n").toStdString();
+  EXPECT_TRUE(QFile::exists(out + "/trajectory.tum"));
+  EXPECT_TRUE(QFile::exists(out + "/pannellum.json"));
+  EXPECT_FALSE(QFile::exists(out + "/transforms.json"));
+  EXPECT_TRUE(window.document().project().tour.export_tum);
+  EXPECT_EQ(window.document().undo_stack()->count(), undo_steps + 1);
+  window.document().undo_stack()->undo();
+  EXPECT_FALSE(window.document().project().tour.export_tum);
+  EXPECT_TRUE(errors.isEmpty()) << errors.join("\n").toStdString();
   QDir(out).removeRecursively();
 }
 
