@@ -1,5 +1,6 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
+//  [--quality 85] [--pannellum] [--geojson] [--multires [--tile-size 512]] [--marzipano] [--psv]
+//  [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
 //  [--no-rig-fill]]
 //  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
 //  people who walked through and without the rig: processing/cleanplate).
@@ -20,7 +21,8 @@ Command add_export_command(CLI::App& parent) {
     std::string project, out;
     int max_size = 0, preview_size = 0, quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
-    bool no_rig_fill = false, blur_faces = false;
+    bool no_rig_fill = false, blur_faces = false, multires = false, marzipano = false, psv = false;
+    int tile_size = 0;
     std::string nadir, rig_mask;
   };
   auto o = std::make_shared<Options>();
@@ -33,6 +35,12 @@ Command add_export_command(CLI::App& parent) {
   sub->add_option("--quality", o->quality, "JPEG quality 1..100 (default: the project's, 85)");
   sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
+  sub->add_flag("--multires", o->multires,
+                "Also write multi-resolution cube tiles of each keyframe (tiles/; pannellum.json uses them)");
+  sub->add_option("--tile-size", o->tile_size, "Largest cube tile in pixels (default 512)");
+  sub->add_flag("--marzipano", o->marzipano,
+                "Also write a Marzipano tour on the cube tiles (marzipano.html, marzipano-data.js)");
+  sub->add_flag("--psv", o->psv, "Also write psv.json (Photo Sphere Viewer virtual tour and map)");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
   sub->add_flag("--clean-plates", o->clean_plates,
                 "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
@@ -57,6 +65,10 @@ Command add_export_command(CLI::App& parent) {
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             options.offline_images = !o->http_only;
+            options.multires = options.multires || o->multires;
+            options.marzipano = options.marzipano || o->marzipano;
+            options.psv = options.psv || o->psv;
+            if (o->tile_size > 0) options.tile_size = o->tile_size;
             KeyframeCleaning& cleaning = options.cleaning;
             cleaning.clean_plates = cleaning.clean_plates || o->clean_plates;
             cleaning.fill_rig = !o->no_rig_fill;
