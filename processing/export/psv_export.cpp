@@ -52,8 +52,8 @@ nlohmann::json psv_tour(const Project& project, const std::vector<KeyframeImageF
              {"position", {{"yaw", bearing(s, h.yaw_deg)}, {"pitch", rad(h.pitch_deg)}}}});
         continue;
       }
-      // Markers plugin: "tooltip" and "content" are HTML there, so the title goes in as plain "listContent"
-      // and the page must set them with textContent; we give the text in "data".
+      // The markers plugin reads "tooltip" and "content" as HTML: the title and text go in "data", for the
+      // page to show as text.
       node["markers"].push_back({{"id", s.id + "-" + h.id},
                                  {"position", {{"yaw", bearing(s, h.yaw_deg)}, {"pitch", rad(h.pitch_deg)}}},
                                  {"circle", 12},
