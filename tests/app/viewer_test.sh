@@ -22,9 +22,14 @@ stamp="$npm_dir/.installed"
 if [[ "$(cat "$stamp" 2> /dev/null)" != "$(echo $packages)" ]]; then
   mkdir -p "$npm_dir" || fail "cannot create $npm_dir"
   # shellcheck disable=SC2086
-  if ! timeout 300 npm install --prefix "$npm_dir" --no-audit --no-fund --no-save $packages > "$npm_dir/install.log" 2>&1; then
-    skip "npm cannot install the viewers (registry unreachable?): $(tail -3 "$npm_dir/install.log")"
+  log=$(mktemp)
+  if ! timeout 300 npm install --prefix "$npm_dir" --no-audit --no-fund --no-save --fetch-retries=1 \
+      $packages > "$log" 2>&1; then
+    reason=$(grep -m1 -E "code E|errno|network" "$log")
+    rm -f "$log"
+    skip "npm cannot install the viewers from $(npm config get registry) (${reason:-no reason given})"
   fi
+  rm -f "$log"
   echo $packages > "$stamp"
 fi
 
