@@ -69,8 +69,10 @@ nlohmann::json psv_tour(const Project& project, const std::vector<KeyframeImageF
       if (s.frame == start) return map.pixel({s.x, s.y});
     return Eigen::Vector2d(map.width_px() / 2.0, map.height_px() / 2.0);
   }();
-  // The map turns so that north is up: plan +Y is up on plan.svg, north lies plan_rotation clockwise from it.
-  const double rotation_deg = project.geo.valid ? -degrees(project.geo.plan_rotation) : 0.0;
+  // The map plugin draws plan.svg turned counter-clockwise by yaw + rotation (radians), so that the view
+  // points up. Yaw is the bearing; on plan.svg (plan +Y up) north lies plan_rotation clockwise from up, so
+  // rotation = plan_rotation brings north up at yaw 0.
+  const double rotation = project.geo.valid ? project.geo.plan_rotation : 0.0;
   return {{"startNodeId", interop_scene_id(start)},
           {"positionMode", "manual"},
           {"nodes", nodes},
@@ -78,7 +80,7 @@ nlohmann::json psv_tour(const Project& project, const std::vector<KeyframeImageF
            {{"imageUrl", "plan.svg"},
             {"size", {{"width", map.width_px()}, {"height", map.height_px()}}},
             {"center", {{"x", centre.x()}, {"y", centre.y()}}},
-            {"rotation", rotation_deg}}}};
+            {"rotation", rotation}}}};
 }
 
 }  // namespace plenopath

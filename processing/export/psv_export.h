@@ -1,7 +1,8 @@
 #pragma once
 // A Photo Sphere Viewer (5.x) tour of the package, psv.json: the virtual-tour plugin's nodes (id, name,
 // caption, panorama, sphereCorrection, links with positions, gps with a geo-anchor, map position, markers for
-// the author's hotspots) and the map plugin's settings on plan.svg (imageUrl, center, rotation). A page
+// the author's hotspots) and the map plugin's settings on plan.svg (imageUrl, size, center, rotation in
+// radians as PSV reads plain numbers). A page
 // passes "nodes" and "startNodeId" to VirtualTourPlugin (positionMode "manual") and "map" to MapPlugin.
 #include <nlohmann/json.hpp>
 #include <vector>

@@ -14,7 +14,9 @@
 #include <sstream>
 
 #include "model/json_reader.h"
+#include "processing/export/psv_export.h"
 #include "processing/export/tour_export.h"
+#include "processing/export/tour_interop.h"
 
 namespace plenopath {
 namespace {
@@ -206,6 +208,26 @@ TEST_F(InteropExport, PsvNodesOnTheMap) {
   std::string head;
   std::getline(svg, head);
   EXPECT_NE(head.find("width=\"500\" height=\"400\""), std::string::npos) << head;
+}
+
+TEST(InteropGeo, NorthFromTheAnchor) {
+  // Plan +X 35 deg counter-clockwise from east; a keyframe facing plan +X looks along bearing 90 - 35 = 55.
+  Project p;
+  p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 1.0, 0.0, 0.0, 1.0, 0, ""}};
+  p.keyframes.indices = {0, 1};
+  p.geo = {true, 48.0, 2.0, 35.0, radians(35.0), 1.0, {0.0, 0.0}};
+  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", "", ""},
+                                                  {1, "p1.jpg", "f1.jpg", "", "", ""}};
+  EXPECT_NEAR(pannellum_config(p, images)["scenes"]["k0"]["northOffset"].get<double>(), 55.0, 1e-9);
+  const nlohmann::json psv = psv_tour(p, images);
+  EXPECT_NEAR(psv["nodes"][0]["sphereCorrection"]["pan"].get<double>(), -radians(55.0), 1e-9);
+  // The link to k1 (1 m along plan +X) at bearing 55 deg.
+  EXPECT_NEAR(psv["nodes"][0]["links"][0]["position"]["yaw"].get<double>(), radians(55.0), 1e-9);
+  // On plan.svg north lies 35 deg clockwise from up: the map plugin turns the image back by 35 deg.
+  EXPECT_NEAR(psv["map"]["rotation"].get<double>(), radians(35.0), 1e-9);
+  // gps in PSV's order: longitude, latitude, altitude; the origin of the plan is the anchor.
+  EXPECT_NEAR(psv["nodes"][0]["gps"][0].get<double>(), 2.0, 1e-9);
+  EXPECT_NEAR(psv["nodes"][0]["gps"][1].get<double>(), 48.0, 1e-9);
 }
 
 TEST(InteropExportOptions, TileSizeIsChecked) {
