@@ -1,6 +1,7 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio]
-//  [--no-photo-metadata] [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
+//  [--quality 85] [--pannellum] [--geojson] [--multires [--tile-size 512]] [--marzipano] [--psv]
+//  [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio] [--no-photo-metadata]
+//  [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
 //  [--no-rig-fill]]
 //  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
 //  people who walked through and without the rig: processing/cleanplate).
@@ -24,6 +25,8 @@ Command add_export_command(CLI::App& parent) {
     bool no_rig_fill = false, blur_faces = false;
     bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, nerfstudio = false,
          no_photo_metadata = false;
+    bool no_rig_fill = false, blur_faces = false, multires = false, marzipano = false, psv = false;
+    int tile_size = 0;
     std::string nadir, rig_mask;
   };
   auto o = std::make_shared<Options>();
@@ -48,6 +51,12 @@ Command add_export_command(CLI::App& parent) {
                 "Also write transforms.json: the keyframes as nerfstudio EQUIRECTANGULAR cameras");
   sub->add_flag("--no-photo-metadata", o->no_photo_metadata,
                 "Leave the GPano XMP and EXIF GPS out of the keyframe JPEGs");
+  sub->add_flag("--multires", o->multires,
+                "Also write multi-resolution cube tiles of each keyframe (tiles/; pannellum.json uses them)");
+  sub->add_option("--tile-size", o->tile_size, "Largest cube tile in pixels (default 512)");
+  sub->add_flag("--marzipano", o->marzipano,
+                "Also write a Marzipano tour on the cube tiles (marzipano.html, marzipano-data.js)");
+  sub->add_flag("--psv", o->psv, "Also write psv.json (Photo Sphere Viewer virtual tour and map)");
   sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
   sub->add_flag("--clean-plates", o->clean_plates,
                 "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
@@ -78,6 +87,10 @@ Command add_export_command(CLI::App& parent) {
             options.nerfstudio = options.nerfstudio || o->nerfstudio;
             if (o->no_photo_metadata) options.photo_metadata = false;
             options.offline_images = !o->http_only;
+            options.multires = options.multires || o->multires;
+            options.marzipano = options.marzipano || o->marzipano;
+            options.psv = options.psv || o->psv;
+            if (o->tile_size > 0) options.tile_size = o->tile_size;
             KeyframeCleaning& cleaning = options.cleaning;
             cleaning.clean_plates = cleaning.clean_plates || o->clean_plates;
             cleaning.fill_rig = !o->no_rig_fill;

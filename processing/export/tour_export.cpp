@@ -7,6 +7,7 @@
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -16,7 +17,11 @@
 #include "processing/export/keyframe_metadata.h"
 #include "processing/export/nerfstudio_transforms.h"
 #include "processing/export/opensfm_reconstruction.h"
+#include "processing/export/cube_tiles.h"
+#include "processing/export/marzipano_export.h"
+#include "processing/export/plan_svg_frame.h"
 #include "processing/export/player_assets.h"
+#include "processing/export/psv_export.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
 #include "processing/export/trajectory_formats.h"
@@ -162,6 +167,7 @@ void TourExportOptions::check() const {
   if (preview_size < 64 || preview_size > max_size)
     throw Error("export: preview_size must be within 64..max_size pixels");
   if (jpeg_quality < 1 || jpeg_quality > 100) throw Error("export: jpeg_quality must be within 1..100");
+  if (tile_size < 16 || tile_size > 4096) throw Error("export: tile_size must be within 16..4096 pixels");
   cleaning.check();
 }
 
@@ -172,6 +178,9 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
   o.preview_size = std::min(project.tour.preview_size, project.tour.max_size);
   o.jpeg_quality = project.tour.jpeg_quality;
   o.pannellum = project.tour.export_pannellum;
+  o.multires = project.tour.export_multires;
+  o.marzipano = project.tour.export_marzipano;
+  o.psv = project.tour.export_psv;
   // The project's choices for georeferenced files wait for a geo-anchor; asked for explicitly (the command
   // line's flags), they are an error without one.
   o.geojson = project.tour.export_geojson && project.geo.valid;
@@ -185,10 +194,8 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
 }
 
 std::string plan_svg(const FloorPlan& plan) {
-  const PlanExtents e = plan.extents();
-  const double margin = 0.5;
-  const Eigen::Vector2d lo = e.valid ? Eigen::Vector2d(e.min.array() - margin) : Eigen::Vector2d(0, 0);
-  const Eigen::Vector2d hi = e.valid ? Eigen::Vector2d(e.max.array() + margin) : Eigen::Vector2d(1, 1);
+  const PlanSvgFrame frame = plan_svg_frame(plan);
+  const Eigen::Vector2d lo = frame.lo, hi = frame.hi;
   auto escape = [](const std::string& text) {
     std::string out;
     for (char c : text) {
@@ -216,7 +223,8 @@ std::string plan_svg(const FloorPlan& plan) {
   svg << std::fixed;
   // viewBox in metres with y flipped: plan (x, y) is drawn at (x, -y).
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << lo.x() << " " << -hi.y() << " "
-      << hi.x() - lo.x() << " " << hi.y() - lo.y() << "\">\n";
+      << hi.x() - lo.x() << " " << hi.y() - lo.y() << "\" width=\"" << frame.width_px() << "\" height=\""
+      << frame.height_px() << "\">\n";
   std::map<std::string, std::vector<const PlanSegment*>> by_layer;
   for (const auto& s : plan.segments) by_layer[s.layer].push_back(&s);
   for (const auto& [layer, segments] : by_layer) {
@@ -263,6 +271,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   double replaced = 0, rig_filled = 0;
   std::vector<KeyframeImageFiles> images;
   int full_width = 0, preview_width = 0;
+  std::optional<CubeTileLayout> tiles;
   for (std::size_t i = 0; i < order.size(); ++i) {
     report_progress(0.05 + 0.8 * i / order.size(), "encoding keyframes");
     const int frame = order[i];
@@ -303,6 +312,13 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     }
     package.add(files.preview, std::string(preview.begin(), preview.end()));
     package.add(files.full, std::string(full.begin(), full.end()));
+    if (options.writes_cube_tiles()) {
+      if (!tiles) tiles = cube_tile_layout(full_width, options.tile_size);  // one layout for the tour
+      files.tiles = "tiles/" + frame_stem(frame);
+      write_cube_tiles(image, *tiles, options.jpeg_quality, [&](const std::string& path, std::string jpeg) {
+        package.add(files.tiles + "/" + path, std::move(jpeg));
+      });
+    }
     images.push_back(files);
   }
 
@@ -338,7 +354,8 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   }
 
   report_progress(0.9, "tour description");
-  const nlohmann::json tour = make_tour_json(project, images, media, full_width, preview_width);
+  nlohmann::json tour = make_tour_json(project, images, media, full_width, preview_width);
+  if (tiles) tour["tiles"] = cube_tiles_json(*tiles);
   package.add("tour.json", tour.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   // The same data as a script: browsers refuse fetch() of file:// URLs, but load scripts.
   package.add("tour.js", "window.PLENOPATH_TOUR = " +
@@ -347,10 +364,17 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   for (const EmbeddedFile& f : player_assets())
     package.add(f.name, std::string(reinterpret_cast<const char*>(f.data), f.size));
   if (options.pannellum)
+    package.add("pannellum.json", pannellum_config(project, images, tiles ? &*tiles : nullptr)
+                                          .dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                      "\n");
+  if (options.marzipano) {
+    package.add("marzipano-data.js", marzipano_data_js(project, images, *tiles));
+    for (const MarzipanoPageFile& f : marzipano_page_files()) package.add(f.name, f.text);
+  }
+  if (options.psv)
     package.add(
-        "pannellum.json",
-        pannellum_config(project, images).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
-            "\n");
+        "psv.json",
+        psv_tour(project, images).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   if (options.geojson)
     package.add("path.geojson",
                 path_geojson(project).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

@@ -32,6 +32,13 @@ struct TourExportOptions {
   bool nerfstudio = false;  // also write transforms.json, the keyframes (nerfstudio_transforms.h)
   // GPano XMP and, when georeferenced, EXIF GPS in every keyframe JPEG (keyframe_metadata.h).
   bool photo_metadata = true;
+  // Multi-resolution cube tiles of each keyframe under tiles/ (processing/export/cube_tiles.h), described in
+  // tour.json's "tiles" and used by pannellum.json's multiRes.
+  bool multires = false;
+  int tile_size = 512;     // the largest tile, pixels (16..4096); smaller when the faces need it
+  bool marzipano = false;  // also write a Marzipano tour (marzipano.html, marzipano-data.js; implies tiles)
+  bool psv = false;        // also write psv.json (Photo Sphere Viewer virtual-tour and map plugins)
+  bool writes_cube_tiles() const { return multires || marzipano; }
   // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
   // script holding it as a data URI. Off only for packages that will always be served over http.
   bool offline_images = true;

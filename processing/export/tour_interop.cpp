@@ -5,53 +5,60 @@
 #include <cmath>
 
 #include "model/error.h"
+#include "processing/export/interop_scenes.h"
 #include "rig/spherical.h"
 
 namespace plenopath {
-namespace {
 
-std::string scene_id(int frame) { return "k" + std::to_string(frame); }
-
-}  // namespace
-
-nlohmann::json pannellum_config(const Project& project, const std::vector<KeyframeImageFiles>& images) {
+nlohmann::json pannellum_config(const Project& project, const std::vector<KeyframeImageFiles>& images,
+                                const CubeTileLayout* tiles) {
   using nlohmann::json;
-  // Scenes linked along the path: sort the keyframes by frame index.
-  std::vector<const KeyframeImageFiles*> along;
-  for (const auto& img : images) along.push_back(&img);
-  std::sort(along.begin(), along.end(), [](auto* a, auto* b) { return a->frame < b->frame; });
-
   json scenes = json::object();
-  for (std::size_t i = 0; i < along.size(); ++i) {
-    const PathFrame* f = project.path.find_frame(along[i]->frame);
-    if (!f) throw Error("keyframe " + std::to_string(along[i]->frame) + " has no pose in the path");
-    json scene = {{"title", project.tour.title + " — frame " + std::to_string(f->index)},
-                  {"type", "equirectangular"},
-                  {"panorama", along[i]->full},
-                  {"preview", along[i]->preview},
-                  {"hotSpots", json::array()}};
-    if (project.geo.valid) {
-      // Compass bearing (clockwise from north) of the panorama's centre.
-      const double enu_angle = f->heading + project.geo.plan_rotation;
-      scene["northOffset"] = std::remainder(90.0 - degrees(enu_angle), 360.0);
+  for (const InteropScene& s : interop_scenes(project, images)) {
+    json scene = {{"title", s.title}, {"northOffset", s.north_offset_deg}, {"hotSpots", json::array()}};
+    if (tiles && !s.images->tiles.empty()) {
+      // Pannellum's levels 1..n are ours; level 0 (one tile a face) is what it shows without WebGL.
+      scene["type"] = "multires";
+      scene["multiRes"] = {{"path", s.images->tiles + "/%l/%s/%y_%x"},
+                           {"fallbackPath", s.images->tiles + "/0/%s/0_0"},
+                           {"extension", "jpg"},
+                           {"tileResolution", tiles->tile_size()},
+                           {"maxLevel", tiles->max_level()},
+                           {"cubeResolution", tiles->face_size()}};
+    } else {
+      scene["type"] = "equirectangular";
+      scene["panorama"] = s.images->full;
+      scene["preview"] = s.images->preview;
     }
-    for (std::size_t j : {i - 1, i + 1}) {
-      if (j >= along.size()) continue;  // i - 1 wraps to a huge value at i = 0
-      const PathFrame* g = project.path.find_frame(along[j]->frame);
-      const double world = std::atan2(g->y - f->y, g->x - f->x);
-      const double yaw = degrees(azimuth_of_world_angle(f->heading, world));
-      scene["hotSpots"].push_back({{"pitch", -10.0},
-                                   {"yaw", yaw},
+    // With "sameAzimuth" Pannellum keeps northOffset + yaw across the change: the world direction.
+    for (const InteropLink& l : s.links)
+      scene["hotSpots"].push_back({{"pitch", l.pitch_deg},
+                                   {"yaw", l.yaw_deg},
                                    {"type", "scene"},
-                                   {"text", j > i ? "Forward" : "Back"},
-                                   {"sceneId", scene_id(g->index)},
+                                   {"text", l.label},
+                                   {"sceneId", l.target_id},
                                    {"targetYaw", "sameAzimuth"}});
+    for (const InteropSpot& h : s.spots) {
+      json spot = {{"id", h.id}, {"pitch", h.pitch_deg}, {"yaw", h.yaw_deg}};
+      // Pannellum escapes "text" itself (escapeHTML), so titles stay plain text.
+      const std::string text = h.text.empty() ? h.title : h.title + ": " + h.text;
+      if (h.jump_frame >= 0) {
+        spot.update({{"type", "scene"},
+                     {"text", text},
+                     {"sceneId", interop_scene_id(h.jump_frame)},
+                     {"targetYaw", "sameAzimuth"}});
+      } else {
+        spot.update({{"type", "info"}, {"text", text}});
+        if (!h.url.empty()) spot["URL"] = h.url;
+      }
+      scene["hotSpots"].push_back(spot);
     }
-    scenes[scene_id(f->index)] = scene;
+    scenes[s.id] = scene;
   }
   const int first = images.empty() ? 0 : images.front().frame;
-  return {{"default", {{"firstScene", scene_id(first)}, {"sceneFadeDuration", 600}, {"autoLoad", true}}},
-          {"scenes", scenes}};
+  return {
+      {"default", {{"firstScene", interop_scene_id(first)}, {"sceneFadeDuration", 600}, {"autoLoad", true}}},
+      {"scenes", scenes}};
 }
 
 Eigen::Vector3d wgs84_from_plan(const GeoAnchor& anchor, const Eigen::Vector2d& plan) {

@@ -4,13 +4,18 @@
 #include <vector>
 
 #include "model/project.h"
+#include "processing/export/cube_tiles.h"
 #include "processing/export/tour_json.h"
 
 namespace plenopath {
 
-// One Pannellum scene per keyframe, each linked to its neighbours along the path by "scene" hotspots
-// placed at the azimuth where the neighbour lies; northOffset from the geo-anchor when there is one.
-nlohmann::json pannellum_config(const Project& project, const std::vector<KeyframeImageFiles>& images);
+// One Pannellum scene per keyframe (processing/export/interop_scenes.h): linked to its neighbours along the
+// path by "scene" hotspots with targetYaw "sameAzimuth", northOffset in every scene (north from the
+// geo-anchor, else the plan's +Y) so that the view keeps its world direction across a change; the
+// author's hotspots as "info" hotspots (title, text, URL) or, for jumps, "scene" hotspots. "multires" on
+// the cube tiles when `tiles` is given and the keyframes have them, "equirectangular" otherwise.
+nlohmann::json pannellum_config(const Project& project, const std::vector<KeyframeImageFiles>& images,
+                                const CubeTileLayout* tiles = nullptr);
 
 // FeatureCollection: the path as a LineString and each keyframe as a Point, in WGS84 (lon, lat order),
 // placed through the geo-anchor with GeographicLib's LocalCartesian. Throws Error without a valid anchor.

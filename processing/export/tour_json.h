@@ -12,6 +12,7 @@ struct KeyframeImageFiles {
   int frame = 0;
   std::string preview, full;                // package-relative JPEG paths
   std::string preview_script, full_script;  // package-relative .js wrappers ("" when not written)
+  std::string tiles;                        // package-relative folder of its cube tiles ("" when none)
 };
 
 struct HotspotMediaFile {

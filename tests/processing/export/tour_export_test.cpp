@@ -443,8 +443,8 @@ TEST(TourInterop, PannellumLinksPointAtTheNeighbours) {
   Project p;
   p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 0.0, 1.0, M_PI / 2, 1.0, 0, ""}};
   p.keyframes.indices = {0, 1};
-  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", ""},
-                                                  {1, "p1.jpg", "f1.jpg", "", ""}};
+  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", "", ""},
+                                                  {1, "p1.jpg", "f1.jpg", "", "", ""}};
   const nlohmann::json config = pannellum_config(p, images);
   const auto& a = config["scenes"]["k0"]["hotSpots"];
   ASSERT_EQ(a.size(), 1u);
