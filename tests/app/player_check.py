@@ -10,7 +10,10 @@ moves to another keyframe and the picture changes; clicking a hotspot fires its 
 holds markup is shown as text and never executed; with --swap-sequence, the clicked hotspot swaps its region
 for an image sequence that plays, holds its last frame, and swaps back on a second click; with --transition A B
 C (keyframe numbers, B between A and C), the view the walk from A to C draws at B's spot is closer to B's
-own picture than a plain cross-fade of A and C would be. Writes SCREENSHOT_PREFIX-start.png and -walked.png.
+own picture than a plain cross-fade of A and C would be. Then the same page in a Chromium WITHOUT
+--allow-file-access-from-files (a browser as a viewer has it, where file:// images are tainted): it still renders
+non-blank from the previews, and its status line says the full resolution needs http. Writes
+SCREENSHOT_PREFIX-start.png, -walked.png and -file-only.png.
 """
 import base64, json, os, subprocess, sys, tempfile, time
 
@@ -19,7 +22,7 @@ def fail(msg):
     sys.exit(1)
 
 class Browser:
-    def __init__(self):
+    def __init__(self, file_access=True):
         self.profile = tempfile.mkdtemp(prefix='plenopath-chromium-')
         r_ours, w_chrome = os.pipe()   # chromium writes to its fd 4
         r_chrome, w_ours = os.pipe()   # chromium reads from its fd 3
@@ -33,8 +36,9 @@ class Browser:
         args = ['chromium', '--headless=new', '--remote-debugging-pipe', '--no-sandbox', '--no-first-run',
                 '--disable-background-networking', '--disable-component-update', '--disable-sync',
                 '--disable-quic', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-                '--ignore-gpu-blocklist', '--allow-file-access-from-files', '--window-size=1280,800',
-                '--user-data-dir=' + self.profile, 'about:blank']
+                '--ignore-gpu-blocklist', '--window-size=1280,800', '--user-data-dir=' + self.profile]
+        args += ['--allow-file-access-from-files'] if file_access else []
+        args += ['about:blank']
         # close_fds=False: the fds 3 and 4 made in setup() must survive into chromium (our own pipe ends are
         # not inheritable, so nothing else leaks).
         self.proc = subprocess.Popen(args, preexec_fn=setup, close_fds=False,
@@ -179,6 +183,44 @@ def check_swap_sequence(b, spot, before, prefix):
     print('sequence swapped in, played, held its last frame, swapped back')
 
 
+def open_page(b, package):
+    target = next(t for t in b.send('Target.getTargets', session=False)['targetInfos'] if t['type'] == 'page')
+    b.session = b.send('Target.attachToTarget', {'targetId': target['targetId'], 'flatten': True},
+                       session=False)['sessionId']
+    b.send('Page.enable')
+    b.send('Runtime.enable')
+    b.send('Emulation.setDeviceMetricsOverride', {'width': 1280, 'height': 800, 'deviceScaleFactor': 1,
+                                                  'mobile': False})
+    b.send('Page.navigate', {'url': 'file://' + package + '/index.html'})
+    b.wait_for("window.plenopathPlayer !== undefined", what='the player script')
+    if not b.evaluate("window.plenopathPlayer.ready", await_promise=True):
+        fail('player reported an error: ' + str(b.evaluate("document.getElementById('error').textContent")))
+    b.wait_for("window.plenopathPlayer.state.keyframe >= 0", what='the first keyframe')
+
+
+def check_without_file_access(package, prefix):
+    """A browser that taints file:// images: the previews (scripts) show, the full images are refused once."""
+    b = Browser(file_access=False)
+    try:
+        open_page(b, package)
+        b.wait_for("window.plenopathPlayer.state.note !== ''", timeout=30,
+                   what='the player to find the full image unusable from file://')
+        time.sleep(0.8)  # the cross-fade
+        view = b.evaluate(PIXELS)
+        b.screenshot(prefix + '-file-only.png')
+        status = b.evaluate("document.getElementById('status').textContent")
+        level = b.evaluate("window.plenopathPlayer.state.level")
+        print('without file access: level %s, view %s, status: %s' % (level, json.dumps(view), status))
+        if level != 'preview':
+            fail('without file access the view is at level ' + str(level) + ', not preview')
+        if view['std'] < 8:
+            fail('without file access the panorama canvas looks blank: ' + json.dumps(view))
+        if 'serve the folder over http' not in status:
+            fail('the status line does not say why the resolution is low: ' + status)
+    finally:
+        b.close()
+
+
 def main():
     if len(sys.argv) < 3:
         print(__doc__)
@@ -187,18 +229,7 @@ def main():
     xss_title = sys.argv[sys.argv.index('--xss-title') + 1] if '--xss-title' in sys.argv else None
     b = Browser()
     try:
-        target = next(t for t in b.send('Target.getTargets', session=False)['targetInfos'] if t['type'] == 'page')
-        b.session = b.send('Target.attachToTarget', {'targetId': target['targetId'], 'flatten': True},
-                           session=False)['sessionId']
-        b.send('Page.enable')
-        b.send('Runtime.enable')
-        b.send('Emulation.setDeviceMetricsOverride', {'width': 1280, 'height': 800, 'deviceScaleFactor': 1,
-                                                      'mobile': False})
-        b.send('Page.navigate', {'url': 'file://' + package + '/index.html'})
-        b.wait_for("window.plenopathPlayer !== undefined", what='the player script')
-        if not b.evaluate("window.plenopathPlayer.ready", await_promise=True):
-            fail('player reported an error: ' + str(b.evaluate("document.getElementById('error').textContent")))
-        b.wait_for("window.plenopathPlayer.state.keyframe >= 0", what='the first keyframe')
+        open_page(b, package)
         b.wait_for("window.plenopathPlayer.state.level === 'full'", what='the full-resolution image')
         time.sleep(0.8)  # the cross-fade
         start = b.evaluate(PIXELS)
@@ -261,9 +292,10 @@ def main():
             fail('the picture did not change after walking')
         if walked['std'] < 8:
             fail('the view after walking looks blank')
-        print('ok')
     finally:
         b.close()
+    check_without_file_access(package, prefix)
+    print('ok')
 
 if __name__ == '__main__':
     main()

@@ -47,11 +47,11 @@ function requestFull(index) {
     const k = keyframes[i];
     if (!k || k.level === 'full' || k.fullRequested) continue;
     k.fullRequested = true;
-    loadImage(k.full, k.full_script).then((img) => {
+    loadFull(k).then((img) => {
       k.image = img; k.level = 'full';
       if (i === player.state.keyframe) player.state.level = 'full';
       requestDraw();
-    }).catch((e) => { k.fullRequested = false; console.warn(e.message); });
+    }).catch((e) => { k.fullRequested = fullBlocked; if (!fullBlocked) console.warn(e.message); });
   }
 }
 
@@ -61,7 +61,7 @@ function loadPreviews() {
   const worker = () => {
     if (next >= byRank.length) return Promise.resolve();
     const k = byRank[next++];
-    return loadImage(k.preview, k.preview_script).then((img) => {
+    return loadPreview(k).then((img) => {
       if (k.level !== 'full') { k.image = img; k.level = 'preview'; }
       if (player.state.keyframe < 0 || !keyframes[player.state.keyframe].image) {
         const i = nearestKeyframe(player.state.s, true);
