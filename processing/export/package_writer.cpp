@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +35,36 @@ fs::path temporary_beside(const fs::path& target, const std::string& what) {
   return target.parent_path() / ("." + target.filename().string() + "." + what + std::to_string(::getpid()));
 }
 
+bool all_digits(const std::string& s) {
+  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// What an export killed mid-way (no destructor ran) left beside `target`: its ".partial<pid>" is removed;
+// its ".old<pid>" (killed between the two renames of a folder's replacement) goes back in place when the
+// target is missing, and is removed otherwise. Only for writers whose process is gone.
+void clean_up_after_killed_writers(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".";
+  std::error_code ec;
+  std::vector<fs::path> partial, old;
+  for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    if (entry.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = entry.substr(prefix.size());
+    for (const char* kind : {"partial", "old"}) {
+      const std::string k = kind;
+      if (rest.compare(0, k.size(), k) != 0 || !all_digits(rest.substr(k.size()))) continue;
+      const long pid = std::stol(rest.substr(k.size()));
+      if (pid <= 0 || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+      (k == "partial" ? partial : old).push_back(it->path());
+    }
+  }
+  for (const fs::path& p : partial) fs::remove_all(p, ec);
+  for (const fs::path& p : old) {
+    if (!fs::exists(fs::symlink_status(target, ec))) fs::rename(p, target, ec);
+    if (fs::exists(fs::symlink_status(p, ec))) fs::remove_all(p, ec);
+  }
+}
+
 }  // namespace
 
 class PackageWriter::Sink {
@@ -54,6 +86,7 @@ class ZipSink : public PackageWriter::Sink {
     std::error_code ec;
     if (fs::is_directory(target_, ec)) throw file_error(output, "is a folder, not a .zip file");
     temp_ = temporary_beside(target_, "partial");
+    clean_up_after_killed_writers(target_);
     archive_ = archive_write_new();
     if (!archive_) throw file_error(output, "cannot start the zip archive (out of memory)");
     const std::string level = std::to_string(options.deflate_level);
@@ -132,6 +165,7 @@ class FolderSink : public PackageWriter::Sink {
     target_ = fs::absolute(output).lexically_normal();
     if (target_.filename().empty()) target_ = target_.parent_path();  // "out/" names the folder "out"
     staging_ = temporary_beside(target_, "partial");
+    clean_up_after_killed_writers(target_);
     std::error_code ec;
     fs::remove_all(staging_, ec);
     fs::create_directories(staging_, ec);

@@ -247,6 +247,29 @@ TEST(PackageWriter, UnfinishedPackageKeepsThePreviousOne) {
   fs::remove_all(dir);
 }
 
+// What a killed export left (its process gone: pid 2^22 + 1 is above Linux's pid_max): the temporary package
+// removed; a folder stepped aside between the two renames put back.
+TEST(PackageWriter, LeftoversOfAKilledExportAreCleanedUp) {
+  const fs::path dir = test_dir("killed");
+  const std::string dead = std::to_string((1 << 22) + 1);
+  std::ofstream(dir / (".tour.zip.partial" + dead)) << "half a zip";
+  fs::create_directories(dir / (".folder.old" + dead));
+  std::ofstream(dir / (".folder.old" + dead) / "tour.json") << "previous";
+  fs::create_directories(dir / (".folder.partial" + dead));
+  const std::string alive = std::to_string(::getpid() == 1 ? 2 : 1);  // init: always there
+  std::ofstream(dir / (".tour.zip.partial" + alive)) << "another export's";
+  {
+    PackageWriter zip((dir / "tour.zip").string());
+    PackageWriter folder((dir / "folder").string());
+  }
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{".tour.zip.partial" + alive, "folder"}));
+  EXPECT_EQ(read_file(dir / "folder" / "tour.json"), "previous");
+  fs::remove_all(dir);
+}
+
 TEST(PackageWriter, ClearErrors) {
   try {
     PackageWriter w("/proc/no/such/place/tour.zip");
