@@ -34,7 +34,9 @@ Command add_export_command(CLI::App& parent) {
   sub->add_option("--preview-quality", o->preview_quality, "Preview JPEG quality 1..100 (default 60)");
   sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
-  sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
+  sub->add_flag("--http-only", o->http_only,
+                "Leave out the data-URI copies of hotspot media that file:// viewing needs "
+                "(keyframe previews are scripts either way)");
   sub->add_flag("--clean-plates", o->clean_plates,
                 "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
                 "and without the rig (trolley, operator, tripod: filled from frames further along)");

@@ -2,6 +2,7 @@
 
 #include <archive.h>
 #include <archive_entry.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -137,6 +138,11 @@ class ZipSink : public PackageWriter::Sink {
   }
   std::uintmax_t commit() override {
     if (archive_write_close(archive_) != ARCHIVE_OK) fail("cannot finish the archive (disk full?)");
+    // On disk before the rename, so that a crash right after it never leaves a truncated package.
+    const int fd = ::open(temp_.c_str(), O_RDONLY);
+    const bool synced = fd >= 0 && ::fsync(fd) == 0;
+    if (fd >= 0) ::close(fd);
+    if (!synced) throw file_error(output_, "cannot flush the archive to disk");
     std::error_code ec;
     fs::rename(temp_, target_, ec);  // atomic: readers see the old package or the new one
     if (ec) throw file_error(output_, "cannot move the package into place: " + ec.message());
