@@ -11,8 +11,8 @@ find_package(Threads REQUIRED)
 list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
 find_package(GeographicLib REQUIRED)
 find_package(EXPAT REQUIRED)
-# Tour packages: zips written and read streaming, ZIP64 (processing/export).
-find_package(LibArchive REQUIRED)
+# Tour packages as .zip, streamed entry by entry with ZIP64 (processing/export/package_writer).
+find_package(LibArchive 3.3 REQUIRED)
 
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(DXFLIB REQUIRED IMPORTED_TARGET dxflib)

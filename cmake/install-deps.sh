@@ -8,7 +8,8 @@ packages=(
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev
   libvtk9-qt-dev libvtk9-dev mpi-default-dev
   libopencv-dev opencv-data libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
-  libeigen3-dev libcgal-dev libceres-dev libgeographiclib-dev libdxflib-dev libexpat1-dev libexiv2-dev libarchive-dev
+  libeigen3-dev libcgal-dev libceres-dev libgeographiclib-dev libdxflib-dev libexpat1-dev libexiv2-dev
+  libarchive-dev unzip
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth x11-utils imagemagick gpsbabel ffmpeg libimage-exiftool-perl
   python3 python3-jsonschema python3-ezdxf python3-numpy povray povray-examples blender chromium fonts-dejavu-core fonts-wqy-microhei

@@ -1,8 +1,8 @@
 // `plenopath export --project P.plenopath --out DIR|FILE.zip [--max-size 4096] [--preview-size 1024]
-//  [--quality 85] [--pannellum] [--geojson] [--multires [--tile-size 512]] [--marzipano] [--psv]
-//  [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio] [--no-photo-metadata]
-//  [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE]
-//  [--no-rig-fill]]
+//  [--quality 85] [--preview-quality 60] [--pannellum] [--geojson] [--multires [--tile-size 512]]
+//  [--marzipano]
+//  [--psv] [--kml-gpx|--no-kml-gpx] [--tum] [--opensfm] [--nerfstudio] [--no-photo-metadata]
+//  [--clean-plates [--nadir blur|none|FILE] [--rig-mask FILE] [--no-rig-fill]]
 //  [--blur-faces] [--json]`: the packaged walkthrough (with --clean-plates, each keyframe without the
 //  people who walked through and without the rig: processing/cleanplate).
 #include <iostream>
@@ -20,7 +20,7 @@ namespace plenopath::cli {
 Command add_export_command(CLI::App& parent) {
   struct Options {
     std::string project, out;
-    int max_size = 0, preview_size = 0, quality = 0;
+    int max_size = 0, preview_size = 0, quality = 0, preview_quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
     bool no_rig_fill = false, blur_faces = false;
     bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, nerfstudio = false,
@@ -37,6 +37,7 @@ Command add_export_command(CLI::App& parent) {
   sub->add_option("--max-size", o->max_size, "Full keyframe width in pixels (default: the project's, 4096)");
   sub->add_option("--preview-size", o->preview_size, "Preview keyframe width in pixels (default 1024)");
   sub->add_option("--quality", o->quality, "JPEG quality 1..100 (default: the project's, 85)");
+  sub->add_option("--preview-quality", o->preview_quality, "Preview JPEG quality 1..100 (default 60)");
   sub->add_flag("--pannellum", o->pannellum, "Also write pannellum.json (one scene per keyframe)");
   sub->add_flag("--geojson", o->geojson, "Also write path.geojson in WGS84 (needs a geo-anchor)");
   CLI::Option* kml_gpx = sub->add_flag(
@@ -57,7 +58,9 @@ Command add_export_command(CLI::App& parent) {
   sub->add_flag("--marzipano", o->marzipano,
                 "Also write a Marzipano tour on the cube tiles (marzipano.html, marzipano-data.js)");
   sub->add_flag("--psv", o->psv, "Also write psv.json (Photo Sphere Viewer virtual tour and map)");
-  sub->add_flag("--http-only", o->http_only, "Leave out the data-URI copies that file:// viewing needs");
+  sub->add_flag("--http-only", o->http_only,
+                "Leave out the data-URI copies of hotspot media that file:// viewing needs "
+                "(keyframe previews are scripts either way)");
   sub->add_flag("--clean-plates", o->clean_plates,
                 "Keyframes without the people who walked through (replaced by what neighbouring frames saw) "
                 "and without the rig (trolley, operator, tripod: filled from frames further along)");
@@ -78,6 +81,7 @@ Command add_export_command(CLI::App& parent) {
             if (o->preview_size > 0) options.preview_size = o->preview_size;
             options.preview_size = std::min(options.preview_size, options.max_size);
             if (o->quality > 0) options.jpeg_quality = o->quality;
+            if (o->preview_quality > 0) options.preview_quality = o->preview_quality;
             options.pannellum = options.pannellum || o->pannellum;
             options.geojson = options.geojson || o->geojson;
             if (o->kml_gpx) options.kml_gpx = GeoTrackFiles::kOn;
@@ -110,6 +114,8 @@ Command add_export_command(CLI::App& parent) {
                                           {"keyframes", report.keyframes},
                                           {"capture_frames", report.capture_frames},
                                           {"package_bytes", report.package_bytes},
+                                          {"full_image_bytes", report.full_image_bytes},
+                                          {"package_ratio", report.package_ratio},
                                           {"files", report.files.size()},
                                           {"clean_plates", report.clean_plates},
                                           {"replaced_pct", report.replaced_pct},
@@ -122,7 +128,8 @@ Command add_export_command(CLI::App& parent) {
             } else {
               std::cout << "Exported " << report.keyframes << " keyframes of " << report.capture_frames
                         << " frames to " << report.output << " (" << report.package_bytes / 1024 << " KiB, "
-                        << report.files.size() << " files)\n";
+                        << report.files.size() << " files, " << report.package_ratio
+                        << " x the full images' bytes)\n";
             }
             return kExitOk;
           }};

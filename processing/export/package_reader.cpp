@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "model/error.h"
-#include "processing/export/zip_writer.h"
+#include "processing/export/package_path.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;

@@ -14,90 +14,26 @@
 #include "model/atomic_file.h"
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
+#include "processing/export/asset_script.h"
+#include "processing/export/cube_tiles.h"
+#include "processing/export/keyframe_images.h"
 #include "processing/export/keyframe_metadata.h"
+#include "processing/export/marzipano_export.h"
 #include "processing/export/nerfstudio_transforms.h"
 #include "processing/export/opensfm_reconstruction.h"
-#include "processing/export/cube_tiles.h"
-#include "processing/export/marzipano_export.h"
+#include "processing/export/package_writer.h"
 #include "processing/export/plan_svg_frame.h"
 #include "processing/export/player_assets.h"
 #include "processing/export/psv_export.h"
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
 #include "processing/export/trajectory_formats.h"
-#include "processing/export/zip_writer.h"
 #include "processing/hotspots/hotspot_validation.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
 namespace fs = std::filesystem;
 namespace {
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
-    out += {table[v >> 18], table[(v >> 12) & 63], table[(v >> 6) & 63], table[v & 63]};
-  }
-  if (i + 1 == bytes.size()) {
-    const unsigned v = bytes[i] << 16;
-    out += {table[v >> 18], table[(v >> 12) & 63], '=', '='};
-  } else if (i + 2 == bytes.size()) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8);
-    out += {table[v >> 18], table[(v >> 12) & 63], table[(v >> 6) & 63], '='};
-  }
-  return out;
-}
-
-// Collects the package's files in memory, then writes them as a folder or a zip.
-class PackageWriter {
- public:
-  void add(const std::string& name, std::string data) {
-    if (!is_safe_package_path(name)) throw Error("unsafe path inside the package: '" + name + "'");
-    if (!names_.insert(name).second) throw Error("duplicate file in the package: '" + name + "'");
-    entries_.push_back({name, std::move(data)});
-  }
-  const std::vector<ZipEntry>& entries() const { return entries_; }
-
-  std::uintmax_t write(const std::string& output) const {
-    if (ends_with(output, ".zip")) {
-      write_zip_file(output, entries_);
-      return fs::file_size(output);
-    }
-    // A folder: build next to it and rename, so a failed or cancelled export leaves nothing half-written.
-    const fs::path target = fs::absolute(output).lexically_normal();
-    const fs::path staging = target.string() + ".partial";
-    std::error_code ec;
-    fs::remove_all(staging, ec);
-    fs::create_directories(staging, ec);
-    if (ec) throw file_error(output, "cannot create the package folder: " + ec.message());
-    std::uintmax_t total = 0;
-    for (const ZipEntry& e : entries_) {
-      const fs::path file = staging / e.name;
-      fs::create_directories(file.parent_path(), ec);
-      std::ofstream out(file, std::ios::binary);
-      out.write(e.data.data(), static_cast<std::streamsize>(e.data.size()));
-      if (!out) throw file_error(file.string(), "write failed (disk full?)");
-      total += e.data.size();
-    }
-    fs::remove_all(target, ec);
-    if (ec) throw file_error(output, "cannot replace the previous package: " + ec.message());
-    fs::rename(staging, target, ec);
-    if (ec) throw file_error(output, "cannot move the package into place: " + ec.message());
-    return total;
-  }
-
- private:
-  std::vector<ZipEntry> entries_;
-  std::set<std::string> names_;
-};
 
 std::string read_binary_file(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
@@ -134,31 +70,6 @@ std::string mime_type(const std::string& name) {
   return "application/octet-stream";
 }
 
-// A script that hands the asset to the player as a data URI (file:// pages cannot texture from files).
-std::string asset_script(const std::string& name, const std::string& mime,
-                         const std::vector<unsigned char>& bytes) {
-  return "plenopathAsset(\"" + name + "\",\"data:" + mime + ";base64," + base64(bytes) + "\");\n";
-}
-
-std::string frame_stem(int frame) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "k%06d", frame);
-  return buffer;
-}
-
-std::vector<unsigned char> encode_jpeg(const cv::Mat& image, int width, int quality) {
-  cv::Mat resized;
-  if (width < image.cols)
-    cv::resize(image, resized, cv::Size(width, width / 2), 0, 0, cv::INTER_AREA);
-  else
-    resized = image;
-  std::vector<unsigned char> bytes;
-  if (!cv::imencode(".jpg", resized, bytes,
-                    {cv::IMWRITE_JPEG_QUALITY, quality, cv::IMWRITE_JPEG_PROGRESSIVE, 1}))
-    throw Error("JPEG encoding failed");
-  return bytes;
-}
-
 }  // namespace
 
 void TourExportOptions::check() const {
@@ -168,6 +79,8 @@ void TourExportOptions::check() const {
     throw Error("export: preview_size must be within 64..max_size pixels");
   if (jpeg_quality < 1 || jpeg_quality > 100) throw Error("export: jpeg_quality must be within 1..100");
   if (tile_size < 16 || tile_size > 4096) throw Error("export: tile_size must be within 16..4096 pixels");
+  if (preview_quality < 1 || preview_quality > 100)
+    throw Error("export: preview_quality must be within 1..100");
   cleaning.check();
 }
 
@@ -259,7 +172,8 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
   report.output = options.output;
   report.capture_frames =
       project.capture.frame_count > 0 ? project.capture.frame_count : static_cast<int>(project.path.size());
-  PackageWriter package;
+  PackageWriter package(options.output);  // streamed: each file written as it is made
+  std::uintmax_t full_image_bytes = 0;
 
   // Keyframe images, in progressive order so that a streaming reader gets the coarse tour first.
   report_progress(0.0, "opening capture");
@@ -293,25 +207,15 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     report.warnings.insert(report.warnings.end(), cleaned.warnings.begin(), cleaned.warnings.end());
     full_width = std::min(options.max_size, image.cols) / 2 * 2;
     preview_width = std::min(options.preview_size, full_width) / 2 * 2;
-    KeyframeImageFiles files;
-    files.frame = frame;
-    const std::string stem = "images/" + frame_stem(frame);
-    files.preview = stem + "_preview.jpg";
-    files.full = stem + "_full.jpg";
-    auto encode = [&](int width, const std::string& name) {
-      const std::vector<unsigned char> jpeg = encode_jpeg(image, width, options.jpeg_quality);
-      return options.photo_metadata ? with_photo_tags(jpeg, keyframe_photo_tags(project, frame), name) : jpeg;
+    const KeyframeImageEncoding encoding{full_width, preview_width, options.jpeg_quality,
+                                         options.preview_quality};
+    KeyframeImageBytes bytes;
+    auto tag = [&](std::vector<unsigned char> jpeg, const std::string& name) {
+      return with_photo_tags(jpeg, keyframe_photo_tags(project, frame), name);
     };
-    const std::vector<unsigned char> preview = encode(preview_width, files.preview);
-    const std::vector<unsigned char> full = encode(full_width, files.full);
-    if (options.offline_images) {
-      files.preview_script = stem + "_preview.js";
-      files.full_script = stem + "_full.js";
-      package.add(files.preview_script, asset_script(files.preview, "image/jpeg", preview));
-      package.add(files.full_script, asset_script(files.full, "image/jpeg", full));
-    }
-    package.add(files.preview, std::string(preview.begin(), preview.end()));
-    package.add(files.full, std::string(full.begin(), full.end()));
+    KeyframeImageFiles files = write_keyframe_images(package, frame, image, encoding, &bytes,
+                                                     options.photo_metadata ? JpegEdit(tag) : JpegEdit());
+    full_image_bytes += bytes.full;
     if (options.writes_cube_tiles()) {
       if (!tiles) tiles = cube_tile_layout(full_width, options.tile_size);  // one layout for the tour
       files.tiles = "tiles/" + frame_stem(frame);
@@ -340,12 +244,13 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
       std::error_code ec;
       if (!fs::is_regular_file(source, ec)) return "";  // validate_hotspots has warned about it
       const std::string name = media_name(h.id, suffix, source);
-      const std::string data = read_binary_file(source);
-      if (options.offline_images)
-        package.add(
-            name.substr(0, name.rfind('.')) + ".js",
-            asset_script(name, mime_type(name), std::vector<unsigned char>(data.begin(), data.end())));
-      package.add(name, data);
+      if (options.offline_images) {
+        const std::string data = read_binary_file(source);
+        package.add(name.substr(0, name.rfind('.')) + ".js",
+                    asset_script(name, mime_type(name), reinterpret_cast<const unsigned char*>(data.data()),
+                                 data.size()));
+      }
+      package.add_file(name, source);
       return name;
     };
     m.media = copy_media(h.media, "");
@@ -392,8 +297,11 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
                 nerfstudio_transforms(project, images, full_width, full_width / 2).dump(1) + "\n");
 
   report_progress(0.95, "writing package");
-  for (const ZipEntry& e : package.entries()) report.files.push_back(e.name);
-  report.package_bytes = package.write(options.output);
+  report.files = package.files();
+  report.package_bytes = package.commit();
+  report.full_image_bytes = full_image_bytes;
+  report.package_ratio =
+      full_image_bytes > 0 ? static_cast<double>(report.package_bytes) / full_image_bytes : 0;
   report.keyframes = static_cast<int>(images.size());
   progress.report(1.0, "done");  // written: too late to cancel
   return report;

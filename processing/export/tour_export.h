@@ -1,7 +1,7 @@
 #pragma once
 // Exports a project as a packaged walkthrough: a folder (or .zip) holding tour.json (schema:
-// resources/schema/tour.schema.json), keyframe images at two resolutions, hotspot media, the plan as SVG
-// and the web player, which works offline from file:// or from any static server.
+// resources/schema/tour.schema.json), keyframe images (a full JPEG, a small preview script), hotspot
+// media, the plan as SVG and the web player, which works offline from file:// or from any static server.
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -11,6 +11,7 @@
 #include "model/project.h"
 #include "processing/export/geo_tracks.h"
 #include "processing/export/keyframe_cleaner.h"
+#include "processing/export/keyframe_images.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -39,9 +40,12 @@ struct TourExportOptions {
   bool marzipano = false;  // also write a Marzipano tour (marzipano.html, marzipano-data.js; implies tiles)
   bool psv = false;        // also write psv.json (Photo Sphere Viewer virtual-tour and map plugins)
   bool writes_cube_tiles() const { return multires || marzipano; }
-  // Browsers refuse file:// images as WebGL textures; the player then loads each image from a small
-  // script holding it as a data URI. Off only for packages that will always be served over http.
+  // Browsers refuse file:// media as WebGL textures; the player then loads each hotspot's media from a
+  // script holding it as a data URI (keyframes always have their preview as such a script, their full
+  // image once as a JPEG). Off only for packages that will always be served over http.
   bool offline_images = true;
+  // The preview's JPEG quality, 1..100 (keyframe_images.h says why it is lower).
+  int preview_quality = KeyframeImageEncoding{}.preview_quality;
   // Each keyframe as the tour shows it (keyframe_cleaner.h): its clean plate, its faces blurred.
   KeyframeCleaning cleaning;
   void check() const;  // throws Error naming the bad field
@@ -61,6 +65,9 @@ struct TourExportReport {
   double rig_pct = 0.0;               // share of the image the rig covers (0: no rig found)
   double rig_filled_pct = 0.0;        // mean share of the rig filled by what other frames saw behind it
   int faces_blurred = 0;
+  // The full keyframe JPEGs' bytes, and the package's size over them (what previews, player, media add).
+  std::uintmax_t full_image_bytes = 0;
+  double package_ratio = 0.0;
 };
 
 // Throws Error with a clear message: no path or keyframes, unreadable frames, unwritable output, ...

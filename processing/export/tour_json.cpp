@@ -72,8 +72,6 @@ json make_tour_json(const Project& project, const std::vector<KeyframeImageFiles
               {"s", s[it->second]},
               {"preview", img.preview},
               {"full", img.full}};
-    if (!img.preview_script.empty()) k["preview_script"] = img.preview_script;
-    if (!img.full_script.empty()) k["full_script"] = img.full_script;
     if (!img.tiles.empty()) k["tiles"] = img.tiles;
     keyframes.push_back(std::move(k));
   }

@@ -10,9 +10,9 @@ namespace plenopath {
 
 struct KeyframeImageFiles {
   int frame = 0;
-  std::string preview, full;                // package-relative JPEG paths
-  std::string preview_script, full_script;  // package-relative .js wrappers ("" when not written)
-  std::string tiles;                        // package-relative folder of its cube tiles ("" when none)
+  std::string preview;  // package-relative script holding the small preview JPEG (keyframe_images.h)
+  std::string full;     // package-relative full-resolution JPEG
+  std::string tiles;    // package-relative folder of its cube tiles ("" when none)
 };
 
 struct HotspotMediaFile {

@@ -18,7 +18,10 @@ start frame (from tour.json); any page exception or console error fails the chec
 and in line with the panorama.
 --gyro: deviceorientation events with the screen upright and turned to landscape give the expected view.
 --frame-times: walks the path back and forth and prints the p50/p95 frame time.
-Writes SCREENSHOT_PREFIX-start.png and -walked.png (and -tiles-fov*.png).
+Then the same page in a Chromium WITHOUT --allow-file-access-from-files (a browser as a viewer has it,
+where file:// images are tainted): it still renders non-blank from the previews, and its status line says
+the full resolution needs http.
+Writes SCREENSHOT_PREFIX-start.png, -walked.png and -file-only.png (and -tiles-fov*.png).
 """
 import base64, json, os, subprocess, sys, tempfile, time
 
@@ -27,7 +30,7 @@ def fail(msg):
     sys.exit(1)
 
 class Browser:
-    def __init__(self):
+    def __init__(self, file_access=True):
         self.profile = tempfile.mkdtemp(prefix='plenopath-chromium-')
         r_ours, w_chrome = os.pipe()   # chromium writes to its fd 4
         r_chrome, w_ours = os.pipe()   # chromium reads from its fd 3
@@ -41,8 +44,9 @@ class Browser:
         args = ['chromium', '--headless=new', '--remote-debugging-pipe', '--no-sandbox', '--no-first-run',
                 '--disable-background-networking', '--disable-component-update', '--disable-sync',
                 '--disable-quic', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-                '--ignore-gpu-blocklist', '--allow-file-access-from-files', '--window-size=1280,800',
-                '--user-data-dir=' + self.profile, 'about:blank']
+                '--ignore-gpu-blocklist', '--window-size=1280,800', '--user-data-dir=' + self.profile]
+        args += ['--allow-file-access-from-files'] if file_access else []
+        args += ['about:blank']
         # close_fds=False: the fds 3 and 4 made in setup() must survive into chromium (our own pipe ends are
         # not inheritable, so nothing else leaks).
         self.proc = subprocess.Popen(args, preexec_fn=setup, close_fds=False,
@@ -415,6 +419,44 @@ def check_texture_limit(b, limit):
             fail('a keyframe texture has no mipmaps: ' + json.dumps(t))
 
 
+def open_page(b, package):
+    target = next(t for t in b.send('Target.getTargets', session=False)['targetInfos'] if t['type'] == 'page')
+    b.session = b.send('Target.attachToTarget', {'targetId': target['targetId'], 'flatten': True},
+                       session=False)['sessionId']
+    b.send('Page.enable')
+    b.send('Runtime.enable')
+    b.send('Emulation.setDeviceMetricsOverride', {'width': 1280, 'height': 800, 'deviceScaleFactor': 1,
+                                                  'mobile': False})
+    b.send('Page.navigate', {'url': 'file://' + package + '/index.html'})
+    b.wait_for("window.plenopathPlayer !== undefined", what='the player script')
+    if not b.evaluate("window.plenopathPlayer.ready", await_promise=True):
+        fail('player reported an error: ' + str(b.evaluate("document.getElementById('error').textContent")))
+    b.wait_for("window.plenopathPlayer.state.keyframe >= 0", what='the first keyframe')
+
+
+def check_without_file_access(package, prefix):
+    """A browser that taints file:// images: the previews (scripts) show, the full images are refused once."""
+    b = Browser(file_access=False)
+    try:
+        open_page(b, package)
+        b.wait_for("window.plenopathPlayer.state.note !== ''", timeout=30,
+                   what='the player to find the full image unusable from file://')
+        time.sleep(0.8)  # the cross-fade
+        view = b.evaluate(PIXELS)
+        b.screenshot(prefix + '-file-only.png')
+        status = b.evaluate("document.getElementById('status').textContent")
+        level = b.evaluate("window.plenopathPlayer.state.level")
+        print('without file access: level %s, view %s, status: %s' % (level, json.dumps(view), status))
+        if level != 'preview':
+            fail('without file access the view is at level ' + str(level) + ', not preview')
+        if view['std'] < 8:
+            fail('without file access the panorama canvas looks blank: ' + json.dumps(view))
+        if 'serve the folder over http' not in status:
+            fail('the status line does not say why the resolution is low: ' + status)
+    finally:
+        b.close()
+
+
 def main():
     if len(sys.argv) < 3:
         print(__doc__)
@@ -523,9 +565,10 @@ def main():
         time.sleep(0.3)
         b.evaluate('0')  # reads the events that arrived meanwhile
         b.check_page_errors('during the check')
-        print('ok')
     finally:
         b.close()
+    check_without_file_access(package, prefix)
+    print('ok')
 
 if __name__ == '__main__':
     main()

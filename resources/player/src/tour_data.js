@@ -7,7 +7,7 @@ const DEG = PI / 180;
 const $ = (id) => document.getElementById(id);
 const player = {
   // level: the best image loaded for the keyframe shown; textureLevel: the one on screen (decoded, uploaded).
-  state: { yaw: 0, pitch: 0, fov: 75, s: 0, keyframe: -1, level: 'none', textureLevel: 'none', moving: false },
+  state: { yaw: 0, pitch: 0, fov: 75, s: 0, keyframe: -1, level: 'none', textureLevel: 'none', moving: false, note: '' },
   events: [],                  // fired hotspot actions, newest last (for embedding pages and tests)
   get hotspots() { return hotspots; },  // their live state: swapped, loaded media (for tests)
   ready: null,
@@ -28,8 +28,9 @@ window.plenopathAsset = function (name, dataUri) {
 };
 const fromFile = location.protocol === 'file:';
 
-function assetUrl(path, script) {
-  if (!fromFile || !script) return Promise.resolve(path);
+// The asset's URL: its path, or from file:// (or `always`) the data URI its script hands over.
+function assetUrl(path, script, always) {
+  if ((!fromFile && !always) || !script) return Promise.resolve(path);
   return new Promise((resolve, reject) => {
     assetWaiters.set(path, resolve);
     const tag = document.createElement('script');
@@ -46,6 +47,41 @@ function loadImage(path, script) {
     img.onerror = () => reject(new Error('cannot load ' + path));
     img.src = url;
   }));
+}
+
+// A keyframe's preview: a script holding the small JPEG (from file:// and http alike); older packages had a
+// .jpg with a preview_script.
+function loadPreview(k) {
+  if (/\.js$/i.test(k.preview)) return loadImage(k.preview, k.preview, true);
+  return loadImage(k.preview, k.preview_script);
+}
+
+// A keyframe's full image, once the renderer may use it: a browser that isolates file:// pages taints file
+// images, and texImage2D would throw a SecurityError on each. The player then stays on the previews and
+// says so once in its status line.
+let fullBlocked = false;
+function loadFull(k) {
+  if (fullBlocked) return Promise.reject(new Error('full images cannot be textures here'));
+  return loadImage(k.full, k.full_script).then((img) => {
+    if (fromFile && !k.full_script && isTainted(img)) {
+      fullBlocked = true;
+      player.state.note = 'Opened from a file: preview resolution — serve the folder over http for full resolution';
+      requestDraw();
+      throw new Error(player.state.note);
+    }
+    return img;
+  });
+}
+
+// The same rule as texImage2D's: reading a tainted image's pixels throws a SecurityError.
+function isTainted(img) {
+  const g = document.createElement('canvas').getContext('2d');
+  g.canvas.width = g.canvas.height = 1;
+  g.drawImage(img, 0, 0, 1, 1);
+  try { g.getImageData(0, 0, 1, 1); return false; } catch (e) {
+    if (e.name === 'SecurityError') return true;
+    throw e;
+  }
 }
 
 // An image sequence (the lift doors opening) travels as a video: played once on the region, it then holds

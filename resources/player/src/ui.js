@@ -262,7 +262,8 @@ function frame() {
   const k = keyframes[player.state.keyframe];
   if (k) {
     $('status').textContent = `Keyframe ${keyframes.indexOf(k) + 1} of ${keyframes.length} · frame ${k.frame} · ` +
-      `${player.state.s.toFixed(1)} m of ${(frames.length ? frames[frames.length - 1].s : 0).toFixed(1)} m · ${k.level}`;
+      `${player.state.s.toFixed(1)} m of ${(frames.length ? frames[frames.length - 1].s : 0).toFixed(1)} m · ${k.level}` +
+      (player.state.note ? ' · ' + player.state.note : '');
   }
   const fading = performance.now() - fade.start < FADE_MS;
   const playing = (m) => m instanceof HTMLVideoElement && !m.paused && !m.ended;

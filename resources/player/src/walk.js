@@ -48,11 +48,11 @@ function requestFull(index) {
     // A keyframe with cube tiles shows them at rest: its full equirectangular image is not needed then.
     if (!k || k.level === 'full' || k.fullRequested || (hasTiles(k) && !tilesBlocked)) continue;
     k.fullRequested = true;
-    loadImage(k.full, k.full_script).then((img) => {
+    loadFull(k).then((img) => {
       k.image = img; k.level = 'full';
       if (i === player.state.keyframe) player.state.level = 'full';
       requestDraw();
-    }).catch((e) => { k.fullRequested = false; console.warn(e.message); });
+    }).catch((e) => { k.fullRequested = fullBlocked; if (!fullBlocked) console.warn(e.message); });
   }
 }
 
@@ -62,7 +62,7 @@ function loadPreviews() {
   const worker = () => {
     if (next >= byRank.length) return Promise.resolve();
     const k = byRank[next++];
-    return loadImage(k.preview, k.preview_script).then((img) => {
+    return loadPreview(k).then((img) => {
       if (k.level !== 'full') { k.image = img; k.level = 'preview'; }
       // Previews arrive in progressive order (coarse to fine), not along the path: the first one may be the
       // path's far end. Until the viewer moves, the keyframe shown is the nearest one loaded so far.

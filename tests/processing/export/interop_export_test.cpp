@@ -216,8 +216,7 @@ TEST(InteropGeo, NorthFromTheAnchor) {
   p.path.frames = {{0, "", 0.0, 0.0, 0.0, 1.0, 0, ""}, {1, "", 1.0, 0.0, 0.0, 1.0, 0, ""}};
   p.keyframes.indices = {0, 1};
   p.geo = {true, 48.0, 2.0, 35.0, radians(35.0), 1.0, {0.0, 0.0}};
-  const std::vector<KeyframeImageFiles> images = {{0, "p0.jpg", "f0.jpg", "", "", ""},
-                                                  {1, "p1.jpg", "f1.jpg", "", "", ""}};
+  const std::vector<KeyframeImageFiles> images = {{0, "p0.js", "f0.jpg", ""}, {1, "p1.js", "f1.jpg", ""}};
   EXPECT_NEAR(pannellum_config(p, images)["scenes"]["k0"]["northOffset"].get<double>(), 55.0, 1e-9);
   const nlohmann::json psv = psv_tour(p, images);
   EXPECT_NEAR(psv["nodes"][0]["sphereCorrection"]["pan"].get<double>(), -radians(55.0), 1e-9);

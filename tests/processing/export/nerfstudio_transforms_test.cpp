@@ -17,8 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::vector<KeyframeImageFiles> kImages = {
-    {0, "images/k000000_preview.jpg", "images/k000000_full.jpg", "", ""},
-    {2, "images/k000002_preview.jpg", "images/k000002_full.jpg", "", ""}};
+    {0, "images/k000000_preview.js", "images/k000000_full.jpg", ""},
+    {2, "images/k000002_preview.js", "images/k000002_full.jpg", ""}};
 
 void check(const nlohmann::json& transforms, const std::string& truth) {
   const fs::path dir = fs::temp_directory_path() / ("plenopath_nerfstudio_" + std::to_string(::getpid()));

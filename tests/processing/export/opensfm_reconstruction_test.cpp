@@ -17,8 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::vector<KeyframeImageFiles> kImages = {
-    {0, "images/k000000_preview.jpg", "images/k000000_full.jpg", "", ""},
-    {2, "images/k000002_preview.jpg", "images/k000002_full.jpg", "", ""}};
+    {0, "images/k000000_preview.js", "images/k000000_full.jpg", ""},
+    {2, "images/k000002_preview.js", "images/k000002_full.jpg", ""}};
 
 std::string run_check(const fs::path& dir, const nlohmann::json& reconstruction, const std::string& truth) {
   std::ofstream(dir / "reconstruction.json") << reconstruction.dump(1);
