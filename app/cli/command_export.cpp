@@ -22,7 +22,6 @@ Command add_export_command(CLI::App& parent) {
     std::string project, out;
     int max_size = 0, preview_size = 0, quality = 0, preview_quality = 0;
     bool pannellum = false, geojson = false, json = false, http_only = false, clean_plates = false;
-    bool no_rig_fill = false, blur_faces = false;
     bool kml_gpx = false, no_kml_gpx = false, tum = false, opensfm = false, nerfstudio = false,
          no_photo_metadata = false;
     bool no_rig_fill = false, blur_faces = false, multires = false, marzipano = false, psv = false;

@@ -35,12 +35,17 @@ void KeyframeImageEncoding::check() const {
     throw Error("keyframe images: preview_quality must be within 1..100");
 }
 
+std::string keyframe_stem(int frame) {
+  char stem[32];
+  std::snprintf(stem, sizeof stem, "k%06d", frame);
+  return stem;
+}
+
 KeyframeImageFiles write_keyframe_images(PackageWriter& package, int frame, const cv::Mat& image,
                                          const KeyframeImageEncoding& encoding, KeyframeImageBytes* bytes,
                                          const JpegEdit& edit_full) {
   encoding.check();
-  char stem[32];
-  std::snprintf(stem, sizeof stem, "images/k%06d", frame);
+  const std::string stem = "images/" + keyframe_stem(frame);
   KeyframeImageFiles files;
   files.frame = frame;
   files.full = std::string(stem) + "_full.jpg";

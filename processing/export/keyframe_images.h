@@ -30,6 +30,9 @@ struct KeyframeImageBytes {
   std::uintmax_t preview = 0;  // the preview script (base64 JPEG)
 };
 
+// A keyframe's name in the package: "k000123" for frame 123 (images/k000123_full.jpg, tiles/k000123/).
+std::string keyframe_stem(int frame);
+
 // Changes the full JPEG's bytes before they are written (e.g. adds its photo tags, keyframe_metadata.h);
 // `name` is its package path, for errors.
 using JpegEdit =

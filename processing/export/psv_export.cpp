@@ -34,10 +34,12 @@ nlohmann::json psv_tour(const Project& project, const std::vector<KeyframeImageF
                  // PSV turns the sphere by -pan: the image's centre (bearing north_offset) lands at yaw
                  // north_offset, so yaw = bearing everywhere.
                  {"sphereCorrection", {{"pan", -rad(s.north_offset_deg)}}},
+                 // The keyframe JPEGs carry their own GPano pose heading (keyframe_metadata.h) for photo
+                 // sites; PSV would turn the sphere by it too. The node's panoData takes its place.
+                 {"panoData", {{"poseHeading", 0}, {"posePitch", 0}, {"poseRoll", 0}}},
                  {"map", {{"x", on_map.x()}, {"y", on_map.y()}}},
                  {"links", json::array()},
                  {"markers", json::array()}};
-    if (!s.images->preview.empty()) node["thumbnail"] = s.images->preview;
     if (project.geo.valid) {
       const Eigen::Vector3d g = wgs84_from_plan(project.geo, {s.x, s.y});
       node["gps"] = {g.y(), g.x(), g.z()};  // PSV order: longitude, latitude, altitude

@@ -218,7 +218,7 @@ TourExportReport export_tour(const Project& project, const TourExportOptions& op
     full_image_bytes += bytes.full;
     if (options.writes_cube_tiles()) {
       if (!tiles) tiles = cube_tile_layout(full_width, options.tile_size);  // one layout for the tour
-      files.tiles = "tiles/" + frame_stem(frame);
+      files.tiles = "tiles/" + keyframe_stem(frame);
       write_cube_tiles(image, *tiles, options.jpeg_quality, [&](const std::string& path, std::string jpeg) {
         package.add(files.tiles + "/" + path, std::move(jpeg));
       });

@@ -27,8 +27,7 @@ nlohmann::json pannellum_config(const Project& project, const std::vector<Keyfra
                            {"cubeResolution", tiles->face_size()}};
     } else {
       scene["type"] = "equirectangular";
-      scene["panorama"] = s.images->full;
-      scene["preview"] = s.images->preview;
+      scene["panorama"] = s.images->full;  // (the package's preview is a script: no Pannellum preview)
     }
     // With "sameAzimuth" Pannellum keeps northOffset + yaw across the change: the world direction.
     for (const InteropLink& l : s.links)

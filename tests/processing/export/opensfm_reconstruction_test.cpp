@@ -77,7 +77,7 @@ TEST_F(OpenSfmTest, GeoreferencedShotsAreInTheAnchorsTopocentricFrame) {
 
 TEST(OpenSfm, KeyframesWithoutAPoseAreAnError) {
   Project p = interop_test::hand_made_project();
-  EXPECT_THROW(opensfm_reconstruction(p, {{5, "images/a.jpg", "images/b.jpg", "", ""}}, 64, 32), Error);
+  EXPECT_THROW(opensfm_reconstruction(p, {{5, "images/a.jpg", "images/b.jpg", ""}}, 64, 32), Error);
 }
 
 }  // namespace
