@@ -58,9 +58,9 @@ TEST(NerfstudioTransforms, GeoreferencedRaysAreInTheAnchorsFrame) {
 }
 
 TEST(NerfstudioTransforms, KeyframesWithoutAPoseAreAnError) {
-  EXPECT_THROW(nerfstudio_transforms(interop_test::hand_made_project(),
-                                     {{4, "a.jpg", "images/b.jpg", ""}}, 64, 32),
-               Error);
+  EXPECT_THROW(
+      nerfstudio_transforms(interop_test::hand_made_project(), {{4, "a.jpg", "images/b.jpg", ""}}, 64, 32),
+      Error);
 }
 
 }  // namespace
