@@ -12,7 +12,7 @@ packages=(
   libarchive-dev unzip
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth x11-utils imagemagick gpsbabel ffmpeg libimage-exiftool-perl
-  python3 python3-jsonschema python3-ezdxf python3-numpy povray povray-examples blender chromium fonts-dejavu-core fonts-wqy-microhei
+  python3 python3-jsonschema python3-ezdxf povray povray-examples blender chromium fonts-dejavu-core fonts-wqy-microhei
 )
 
 missing=()
