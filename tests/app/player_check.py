@@ -441,7 +441,11 @@ def check_without_file_access(package, prefix):
         open_page(b, package)
         b.wait_for("window.plenopathPlayer.state.note !== ''", timeout=30,
                    what='the player to find the full image unusable from file://')
-        time.sleep(0.8)  # the cross-fade
+        # The preview decoded, uploaded and faded in: on a loaded machine that takes a while.
+        b.wait_for("window.plenopathPlayer.state.textureLevel === 'preview'", timeout=60,
+                   what='the preview on screen')
+        b.wait_for("(%s).std >= 8" % PIXELS.strip(), timeout=30, what='the preview drawn (non-blank)')
+        time.sleep(0.8)  # the rest of the cross-fade
         view = b.evaluate(PIXELS)
         b.screenshot(prefix + '-file-only.png')
         status = b.evaluate("document.getElementById('status').textContent")

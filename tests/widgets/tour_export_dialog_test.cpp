@@ -52,6 +52,10 @@ TEST(TourExportDialog, StartsFromTheSettingsAndReturnsTheChoices) {
   EXPECT_TRUE(chosen.export_geojson) << "kept for when the project has an anchor";
   EXPECT_TRUE(chosen.export_kml_gpx);
 
+  // A picture to look at: build/tour_export_dialog.png.
+  dialog.show();
+  dialog.grab().save(PLENOPATH_BINARY_DIR "/tour_export_dialog.png");
+
   widgets::TourExportDialog anchored(settings, "/tmp/out", /*georeferenced=*/true);
   QCheckBox* kml = child<QCheckBox>(anchored, "kml_gpx");
   EXPECT_TRUE(kml->isEnabled());
