@@ -7,33 +7,11 @@
 #include <vector>
 
 #include "model/error.h"
+#include "processing/export/xml_escape.h"
 #include "rig/spherical.h"
 
 namespace plenopath {
 namespace {
-
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 void require_anchor(const Project& project, const char* what) {
   if (!project.geo.valid)

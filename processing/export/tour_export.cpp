@@ -28,6 +28,7 @@
 #include "processing/export/tour_interop.h"
 #include "processing/export/tour_json.h"
 #include "processing/export/trajectory_formats.h"
+#include "processing/export/xml_escape.h"
 #include "processing/hotspots/hotspot_validation.h"
 #include "rig/synthetic_camera.h"
 
@@ -109,28 +110,6 @@ TourExportOptions TourExportOptions::from_project(const Project& project, const 
 std::string plan_svg(const FloorPlan& plan) {
   const PlanSvgFrame frame = plan_svg_frame(plan);
   const Eigen::Vector2d lo = frame.lo, hi = frame.hi;
-  auto escape = [](const std::string& text) {
-    std::string out;
-    for (char c : text) {
-      switch (c) {
-        case '&':
-          out += "&amp;";
-          break;
-        case '<':
-          out += "&lt;";
-          break;
-        case '>':
-          out += "&gt;";
-          break;
-        case '"':
-          out += "&quot;";
-          break;
-        default:
-          out += c;
-      }
-    }
-    return out;
-  };
   std::ostringstream svg;
   svg.precision(6);
   svg << std::fixed;
@@ -142,7 +121,7 @@ std::string plan_svg(const FloorPlan& plan) {
   for (const auto& s : plan.segments) by_layer[s.layer].push_back(&s);
   for (const auto& [layer, segments] : by_layer) {
     const bool occluder = !segments.empty() && segments.front()->occluder;
-    svg << "<g class=\"layer" << (occluder ? " occluder" : "") << "\" data-layer=\"" << escape(layer)
+    svg << "<g class=\"layer" << (occluder ? " occluder" : "") << "\" data-layer=\"" << xml_escape(layer)
         << "\" stroke=\"" << (occluder ? "#222" : "#888") << "\" stroke-width=\"" << (occluder ? 0.08 : 0.03)
         << "\" stroke-linecap=\"round\" fill=\"none\">\n";
     for (const PlanSegment* s : segments)
@@ -153,7 +132,7 @@ std::string plan_svg(const FloorPlan& plan) {
   svg << "<g class=\"labels\" font-family=\"sans-serif\" fill=\"#555\" text-anchor=\"middle\">\n";
   for (const auto& l : plan.labels)
     svg << "<text x=\"" << l.position.x() << "\" y=\"" << -l.position.y() << "\" font-size=\""
-        << (l.height > 0 ? l.height : 0.3) << "\">" << escape(l.text) << "</text>\n";
+        << (l.height > 0 ? l.height : 0.3) << "\">" << xml_escape(l.text) << "</text>\n";
   svg << "</g>\n</svg>\n";
   return svg.str();
 }
