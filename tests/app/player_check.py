@@ -67,8 +67,8 @@ class Browser:
             d = params.get('exceptionDetails', {})
             text = 'exception: ' + (d.get('exception', {}).get('description') or d.get('text', '')) + \
                 ' at %s:%s' % (d.get('url', ''), d.get('lineNumber', ''))
-        elif method == 'Runtime.consoleAPICalled' and params.get('type') == 'error':
-            text = 'console.error: ' + ' '.join(str(a.get('value', a.get('description', ''))) for a in params.get('args', []))
+        elif method == 'Runtime.consoleAPICalled' and params.get('type') in ('error', 'assert'):
+            text = 'console.' + params.get('type') + ': ' + ' '.join(str(a.get('value', a.get('description', ''))) for a in params.get('args', []))
         elif method == 'Log.entryAdded' and params.get('entry', {}).get('level') == 'error':
             e = params['entry']
             text = 'log error (%s): %s %s' % (e.get('source', ''), e.get('text', ''), e.get('url', ''))

@@ -35,50 +35,13 @@ def fail(msg):
 
 
 class Browser(player_check.Browser):
-    """player_check's browser, keeping the DevTools events instead of dropping them."""
-
-    def __init__(self):
-        super().__init__()
-        self.events = []
-
-    def send(self, method, params=None, session=True, timeout=30):
-        self.next_id += 1
-        msg = {'id': self.next_id, 'method': method, 'params': params or {}}
-        if session and self.session:
-            msg['sessionId'] = self.session
-        self.wr.write(json.dumps(msg).encode() + b'\0')
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            while b'\0' not in self.buffer:
-                chunk = self.rd.read(1 << 16)
-                if not chunk:
-                    fail('chromium closed the pipe during ' + method)
-                self.buffer += chunk
-            raw, self.buffer = self.buffer.split(b'\0', 1)
-            reply = json.loads(raw)
-            if 'method' in reply:
-                self.events.append(reply)
-            elif reply.get('id') == self.next_id:
-                if 'error' in reply:
-                    fail(method + ': ' + json.dumps(reply['error']))
-                return reply.get('result', {})
-        fail('timeout waiting for ' + method)
+    """player_check's browser (it notes the page's exceptions and console and log errors as they arrive),
+    with what the viewers' checks read from the screen."""
 
     def errors(self):
-        """The page's errors so far: exceptions, console.error/assert, failed loads."""
+        """The page's errors so far."""
         self.evaluate('0')  # drain the pipe
-        out = []
-        for e in self.events:
-            m, p = e['method'], e.get('params', {})
-            if m == 'Runtime.exceptionThrown':
-                d = p['exceptionDetails']
-                out.append('exception: ' + d.get('exception', {}).get('description', d.get('text', '')))
-            elif m == 'Runtime.consoleAPICalled' and p.get('type') in ('error', 'assert'):
-                out.append('console.%s: %s' % (p['type'], ' '.join(str(a.get('value', a.get('description', '')))
-                                                                   for a in p.get('args', []))))
-            elif m == 'Log.entryAdded' and p['entry'].get('level') == 'error':
-                out.append('log: %s %s' % (p['entry'].get('text'), p['entry'].get('url', '')))
-        return out
+        return list(self.page_errors)
 
     def centre_colour(self):
         """The colour class of the 5x5 pixels at the centre of the screen (majority)."""
@@ -177,7 +140,7 @@ def check_marks(b, name, point, wait):
 
 
 def open_page(b, url, ready, what):
-    b.events.clear()
+    b.page_errors.clear()
     b.send('Page.navigate', {'url': url})
     b.wait_for(ready, timeout=60, what=what)
 
