@@ -112,8 +112,11 @@ for i, (x, y, heading) in enumerate(job["poses"]):
         settings.color_depth = '32'
         settings.exr_codec = 'NONE'
         bpy.data.images["Render Result"].save_render(os.path.join(out, "depth_%d.exr" % i))
-    with open(os.path.join(out, "done_%d" % i), "w") as done:  # the depth's units, for the studio
+    # The depth's units, for the studio, which may look for done_i at any moment: written whole under
+    # another name, then renamed (atomic), so it never reads an empty marker.
+    with open(os.path.join(out, "writing_done_%d" % i), "w") as done:
         done.write("%.17g\n" % units)
+    os.replace(os.path.join(out, "writing_done_%d" % i), os.path.join(out, "done_%d" % i))
     print("PLENOPATH frame %d of %d" % (i + 1, len(job["poses"])), flush=True)
 )PY";
 
