@@ -10,6 +10,8 @@ import math
 import struct
 import zlib
 
+from png16 import png_scanlines  # the one hand-written PNG row decoder of the tests
+
 COLOURS = {
     'red': (230, 20, 20), 'green': (20, 200, 20), 'blue': (20, 40, 230), 'white': (250, 250, 250),
     'yellow': (240, 230, 20), 'magenta': (230, 20, 230), 'cyan': (20, 220, 230), 'orange': (250, 140, 10),
@@ -91,33 +93,7 @@ def read_png_rgb(data):
     if depth != 8 or colour not in (2, 6):
         raise ValueError('not an 8-bit RGB/RGBA PNG (depth %d, colour type %d)' % (depth, colour))
     bpp = 3 if colour == 2 else 4
-    chunks, pos = b'', 8
-    while pos < len(data):
-        n, kind = struct.unpack('>I4s', data[pos:pos + 8])
-        if kind == b'IDAT':
-            chunks += data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-    raw = zlib.decompress(chunks)
-    stride, prev, rows = w * bpp, bytearray(w * bpp), []
-    for v in range(h):
-        kind = raw[v * (stride + 1)]
-        line = bytearray(raw[v * (stride + 1) + 1:(v + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if kind == 1:
-                line[i] = (line[i] + a) & 255
-            elif kind == 2:
-                line[i] = (line[i] + b) & 255
-            elif kind == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif kind == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([tuple(line[bpp * u:bpp * u + 3]) for u in range(w)])
-        prev = line
+    rows = [[tuple(line[bpp * u:bpp * u + 3]) for u in range(w)] for line in png_scanlines(data, bpp)]
     return w, h, rows
 
 
