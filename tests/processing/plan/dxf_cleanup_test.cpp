@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <random>
 
@@ -157,9 +156,9 @@ TEST(DxfCleanup, StrayEntityFarAwayAndAbsurdCoordinates) {
   const auto plain = clean_segments(in, kTol, &plain_counts);
   in.push_back(seg({1e7, 1e7}, {1e7 + 3, 1e7}));
   in.push_back(seg({1e20, 0}, {1e20, 1e20}));
-  const auto t0 = std::chrono::steady_clock::now();
+  // No time limit here (CI machines are shared): a grid that tried to span 1e20 m would not finish, and
+  // ctest's timeout reports that.
   const auto out = clean_segments(in, kTol, &counts);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
   EXPECT_EQ(plain.size(), 41u * 40u * 2u);
   EXPECT_EQ(out.size(), plain.size() + 2);
   EXPECT_EQ(counts.intersections_split, plain_counts.intersections_split);
