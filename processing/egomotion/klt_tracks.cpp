@@ -154,238 +154,265 @@ cv::Mat KltTracker::prepare(const cv::Mat& frame) {
   return gray;
 }
 
+// The live tracks followed from the previous frame into this one (padded coordinates).
+struct KltTracker::LiveFlow {
+  std::vector<cv::Point2f> from, to;
+  std::vector<char> continued;    // per live track: found, checked back, inside the band and the mask
+  std::vector<double> flow;       // flow lengths of the continued tracks
+  bool moved = false;             // the camera moved (parallax beyond a turn), so tracks age
+  std::vector<AffineWarp> warps;  // per live track: its affine refinement (affine_refinement)
+  std::vector<char> aligned;      // ... and whether it was accepted
+};
+
+bool KltTracker::unmasked(double x, double y) const {
+  if (mask_.empty()) return true;
+  int mx = static_cast<int>(std::floor(x)) % width_;
+  if (mx < 0) mx += width_;
+  const int my = std::clamp(static_cast<int>(std::floor(y)), 0, height_ - 1);
+  return mask_.at<uchar>(my, mx) != 0;
+}
+
+void KltTracker::measure_tilt(const cv::Mat& gray) {
+  const TiltEstimate tilt = estimate_tilt(gray, options_.tilt, mask_);
+  tilts_.push_back(tilt);
+  // A frame without enough vertical edges keeps the last good estimate (the floor changes slowly).
+  level_from_camera_.push_back(
+      tilt.valid ? level_from_camera(tilt)
+                 : (level_from_camera_.empty() ? Eigen::Matrix3d::Identity() : level_from_camera_.back()));
+}
+
+KltTracker::LiveFlow KltTracker::follow_live_tracks(const std::vector<cv::Mat>& pyramid,
+                                                    double predicted_shift_px, double y_min,
+                                                    double y_max) const {
+  LiveFlow f;
+  const cv::Size window(options_.window_px, options_.window_px);
+  for (const cv::Point2f& o : live_positions_) f.from.emplace_back(o.x + pad_, o.y + pad_);
+  std::vector<unsigned char> status, status_back;
+  std::vector<float> error;
+  std::vector<cv::Point2f> back;
+  const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  f.to = f.from;
+  for (cv::Point2f& p : f.to) p.x += static_cast<float>(predicted_shift_px);
+  cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, f.from, f.to, status, error, window,
+                           options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
+  const bool check_back = options_.forward_backward_px > 0;
+  if (check_back) {
+    back = f.from;
+    cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, f.to, back, status_back, error, window,
+                             options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
+  }
+  // Which tracks continue, and whether the camera moved: a turn about the vertical shifts the whole
+  // panorama sideways by one amount, so what is left after removing the median sideways flow is the
+  // translation's parallax.
+  f.continued.assign(live_.size(), 0);
+  std::vector<double> sideways;
+  for (size_t k = 0; k < live_.size(); ++k) {
+    bool ok = status[k] != 0;
+    if (ok && check_back) {
+      const float dx = back[k].x - f.from[k].x, dy = back[k].y - f.from[k].y;
+      ok = status_back[k] != 0 &&
+           dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
+    }
+    const float y = f.to[k].y - pad_;
+    if (ok && (y < y_min || y > y_max)) ok = false;
+    if (ok) ok = unmasked(f.to[k].x - pad_, y);  // entering a masked region ends the track
+    f.continued[k] = ok;
+    if (!ok) continue;
+    f.flow.push_back(std::hypot(f.to[k].x - f.from[k].x, f.to[k].y - f.from[k].y));
+    sideways.push_back(f.to[k].x - f.from[k].x);
+  }
+  const double turn_flow = median(sideways);
+  std::vector<double> parallax;
+  for (size_t k = 0; k < live_.size(); ++k)
+    if (f.continued[k])
+      parallax.push_back(std::hypot(f.to[k].x - f.from[k].x - turn_flow, f.to[k].y - f.from[k].y));
+  f.moved = median(parallax) > options_.min_parallax_flow_px;
+  return f;
+}
+
+void KltTracker::refine_affine(const cv::Mat& padded, LiveFlow* f) const {
+  // One refinement per continued track, each independent: run them on all cores (each result depends only
+  // on its track, so the outcome does not depend on the thread count).
+  f->warps.assign(live_.size(), AffineWarp());
+  f->aligned.assign(live_.size(), 0);
+  cv::parallel_for_(cv::Range(0, static_cast<int>(live_.size())), [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      if (!f->continued[k]) continue;
+      AffineWarp& warp = f->warps[k];
+      warp.centre = cv::Point2d(f->to[k].x, f->to[k].y);
+      warp.linear = live_patches_[k].linear;
+      f->aligned[k] = align_affine_patch(live_patches_[k].patch, padded, &warp, options_.affine) &&
+                      std::hypot(warp.centre.x - f->to[k].x, warp.centre.y - f->to[k].y) <=
+                          options_.max_affine_correction_px;
+    }
+  });
+}
+
+void KltTracker::carry_live_tracks(const cv::Mat& padded, LiveFlow& f, int frame_index,
+                                   FrameTrackStats* stats) {
+  const bool affine = options_.affine_refinement;
+  std::vector<int> still_live;
+  std::vector<cv::Point2f> still_positions;
+  std::vector<LivePatch> still_patches;
+  // Every track ends here but those extended below (a cut track ends too: its continuation is a new one).
+  std::vector<char> extended(live_.size(), 0);
+  for (size_t k = 0; k < live_.size(); ++k) {
+    if (!f.continued[k]) {
+      ++stats->lost;
+      continue;
+    }
+    cv::Point2d at(f.to[k].x, f.to[k].y);  // padded coordinates
+    bool refined = true;
+    cv::Matx22d linear = cv::Matx22d::eye();
+    if (affine) {
+      refined = f.aligned[k];
+      if (refined) {
+        at = f.warps[k].centre;
+        linear = f.warps[k].linear;
+      } else {
+        ++affine_failures_;
+      }
+    }
+    if (!unmasked(at.x - pad_, at.y - pad_)) {  // the refinement may have moved it into a masked region
+      ++stats->lost;
+      continue;
+    }
+    if (!refined) {
+      // Lucas-Kanade's step into this frame is all there is, and it is the biased kind: the track ends at
+      // the previous frame, and a new one starts here (sharing no observation with it).
+      LivePatch fresh;
+      fresh.patch = make_affine_patch(padded, at, options_.affine);
+      ++stats->lost;
+      if (!fresh.patch.valid) continue;
+      float fx = std::fmod(static_cast<float>(at.x) - pad_, static_cast<float>(width_));
+      if (fx < 0) fx += width_;
+      if (fx >= width_) fx -= width_;
+      const float fy = static_cast<float>(at.y) - pad_;
+      still_live.push_back(start_track(frame_index, fx, fy));
+      still_positions.emplace_back(fx, fy);
+      still_patches.push_back(std::move(fresh));
+      continue;
+    }
+    float x = static_cast<float>(at.x) - pad_;
+    const float y = static_cast<float>(at.y) - pad_;
+    x = std::fmod(x, static_cast<float>(width_));
+    if (x < 0) x += width_;
+    if (x >= width_) x -= width_;
+    int& age = moved_frames_[live_[k]];
+    if (f.moved) ++age;
+    // Each track's own limit, between half and all of max_track_frames: tracks born together (all of
+    // frame 0's) must not be cut together, or the points before and after that frame would share no
+    // track, and the two halves of the map would each keep their own scale. Only frames in which the
+    // camera moved count: a turn on the spot does not change how a feature looks, and cutting every
+    // track during one would leave no point seen both before and after it (the scale would be lost).
+    const int limit = options_.max_track_frames -
+                      static_cast<int>((static_cast<std::uint64_t>(live_[k]) * 2654435761u) %
+                                       static_cast<std::uint64_t>(options_.max_track_frames / 2 + 1));
+    if (options_.max_track_frames > 0 && age >= limit) {
+      // Continue as a new point from here (see KltOptions::max_track_frames), with a new patch when
+      // refining. The new track starts one frame back: its first pair of frames is then measured by the
+      // same track.
+      LivePatch next_patch;
+      if (affine) {
+        next_patch.patch = make_affine_patch(padded, at, options_.affine);
+        if (!next_patch.patch.valid) {
+          ++stats->lost;
+          continue;
+        }
+      }
+      const int next = start_track(frame_index - 1, live_positions_[k].x, live_positions_[k].y);
+      extend_track(next, x, y);
+      moved_frames_[static_cast<std::size_t>(next)] = 1;
+      still_live.push_back(next);
+      still_positions.emplace_back(x, y);
+      if (affine) still_patches.push_back(std::move(next_patch));
+    } else {
+      extend_track(live_[k], x, y);
+      extended[k] = 1;
+      still_live.push_back(live_[k]);
+      still_positions.emplace_back(x, y);
+      if (affine) {
+        still_patches.push_back(std::move(live_patches_[k]));
+        still_patches.back().linear = linear;
+        // Deformed this much, the patch as first seen is a poor template: cut a new one here (the point
+        // stays the same; its observations so far and from now on are each aligned, not chained).
+        if (deformation(linear) > options_.affine_refresh_deformation) {
+          LivePatch fresh;
+          fresh.patch = make_affine_patch(padded, at, options_.affine);
+          if (fresh.patch.valid) still_patches.back() = std::move(fresh);
+        }
+      }
+    }
+  }
+  for (size_t k = 0; k < live_.size(); ++k)
+    if (!extended[k]) close_track(live_[k]);
+  stats->tracked = static_cast<int>(still_live.size());
+  stats->median_flow_px = median(f.flow);
+  live_ = std::move(still_live);
+  live_positions_ = std::move(still_positions);
+  live_patches_ = std::move(still_patches);
+}
+
+void KltTracker::detect_new_tracks(const cv::Mat& gray, const cv::Mat& padded, int frame_index, double y_min,
+                                   double y_max, FrameTrackStats* stats) {
+  cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
+  mask.rowRange(static_cast<int>(std::ceil(y_min)), static_cast<int>(std::floor(y_max))).setTo(255);
+  if (!mask_.empty()) cv::bitwise_and(mask, mask_, mask);
+  for (const cv::Point2f& o : live_positions_)
+    cv::circle(mask, cv::Point(cvRound(o.x), cvRound(o.y)), options_.min_distance_px, cv::Scalar(0), -1);
+  std::vector<cv::Point2f> corners;
+  const int wanted = options_.max_features - static_cast<int>(live_.size());
+  cv::goodFeaturesToTrack(gray, corners, wanted, options_.quality_level, options_.min_distance_px, mask, 5);
+  stats->corners_available = static_cast<int>(corners.size());
+  if (!corners.empty()) {
+    cv::cornerSubPix(gray, corners, cv::Size(3, 3), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.02));
+  }
+  for (const cv::Point2f& c : corners) {
+    if (!unmasked(c.x, c.y)) continue;  // the sub-pixel refinement may have moved it into a masked region
+    if (options_.affine_refinement) {
+      LivePatch lp;
+      lp.patch = make_affine_patch(padded, cv::Point2d(c.x + pad_, c.y + pad_), options_.affine);
+      if (!lp.patch.valid) continue;  // too little structure to refine: not worth a track
+      live_patches_.push_back(std::move(lp));
+    }
+    live_.push_back(start_track(frame_index, c.x, c.y));
+    live_positions_.push_back(c);
+    ++stats->detected;
+  }
+}
+
 FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shift_px) {
   const cv::Mat gray = prepare(frame);
   const int frame_index = frame_count_++;
   if (!mask_.empty() && mask_.size() != gray.size())
     cv::resize(mask_, mask_, gray.size(), 0, 0, cv::INTER_NEAREST);
-  if (options_.level_bearings) {
-    const TiltEstimate tilt = estimate_tilt(gray, options_.tilt, mask_);
-    tilts_.push_back(tilt);
-    // A frame without enough vertical edges keeps the last good estimate (the floor changes slowly).
-    level_from_camera_.push_back(
-        tilt.valid ? level_from_camera(tilt)
-                   : (level_from_camera_.empty() ? Eigen::Matrix3d::Identity() : level_from_camera_.back()));
-  }
+  if (options_.level_bearings) measure_tilt(gray);
   // Wrap horizontally (the seam), replicate vertically (the poles are not tracked anyway).
   cv::Mat padded;
   cv::copyMakeBorder(gray, padded, 0, 0, pad_, pad_, cv::BORDER_WRAP);
   cv::copyMakeBorder(padded, padded, pad_, pad_, 0, 0, cv::BORDER_REPLICATE);
-  const cv::Size window(options_.window_px, options_.window_px);
   std::vector<cv::Mat> pyramid;
-  cv::buildOpticalFlowPyramid(padded, pyramid, window, options_.pyramid_levels, true);
-
-  FrameTrackStats stats;
-  const bool affine = options_.affine_refinement;
-  std::vector<LivePatch> still_patches;
+  cv::buildOpticalFlowPyramid(padded, pyramid, cv::Size(options_.window_px, options_.window_px),
+                              options_.pyramid_levels, true);
   const double max_elev = options_.max_abs_elevation_deg * M_PI / 180.0;
   const double y_min = (M_PI / 2 - max_elev) / M_PI * height_, y_max = height_ - y_min;
-  std::vector<int> still_live;
+
+  FrameTrackStats stats;
   if (!live_.empty() && !previous_pyramid_.empty()) {
-    std::vector<cv::Point2f> from, to, back;
-    for (const cv::Point2f& o : live_positions_) from.emplace_back(o.x + pad_, o.y + pad_);
-    std::vector<unsigned char> status, status_back;
-    std::vector<float> error;
-    const cv::TermCriteria term(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
-    to = from;
-    for (cv::Point2f& p : to) p.x += static_cast<float>(predicted_shift_px);
-    cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, error, window,
-                             options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
-    bool check_back = options_.forward_backward_px > 0;
-    if (check_back) {
-      back = from;
-      cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, status_back, error, window,
-                               options_.pyramid_levels, term, cv::OPTFLOW_USE_INITIAL_FLOW);
-    }
-    // Which tracks continue, and whether the camera moved: a turn about the vertical shifts the whole
-    // panorama sideways by one amount, so what is left after removing the median sideways flow is the
-    // translation's parallax.
-    std::vector<char> continued(live_.size(), 0);
-    std::vector<double> flow, sideways;
-    for (size_t k = 0; k < live_.size(); ++k) {
-      bool ok = status[k] != 0;
-      if (ok && check_back) {
-        const float dx = back[k].x - from[k].x, dy = back[k].y - from[k].y;
-        ok = status_back[k] != 0 &&
-             dx * dx + dy * dy <= options_.forward_backward_px * options_.forward_backward_px;
-      }
-      const float y = to[k].y - pad_;
-      if (ok && (y < y_min || y > y_max)) ok = false;
-      if (ok && !mask_.empty()) {  // entering a masked region ends the track
-        int mx = static_cast<int>(std::floor(to[k].x - pad_)) % width_;
-        if (mx < 0) mx += width_;
-        const int my = std::clamp(static_cast<int>(std::floor(y)), 0, height_ - 1);
-        ok = mask_.at<uchar>(my, mx) != 0;
-      }
-      continued[k] = ok;
-      if (!ok) continue;
-      flow.push_back(std::hypot(to[k].x - from[k].x, to[k].y - from[k].y));
-      sideways.push_back(to[k].x - from[k].x);
-    }
-    const double turn_flow = median(sideways);
-    std::vector<double> parallax;
-    for (size_t k = 0; k < live_.size(); ++k)
-      if (continued[k]) parallax.push_back(std::hypot(to[k].x - from[k].x - turn_flow, to[k].y - from[k].y));
-    const bool moved = median(parallax) > options_.min_parallax_flow_px;
-    // The affine refinements, one per continued track, are independent: run them on all cores (each
-    // result depends only on its track, so the outcome does not depend on the thread count).
-    std::vector<AffineWarp> warps(live_.size());
-    std::vector<char> aligned(live_.size(), 0);
-    if (affine) {
-      cv::parallel_for_(cv::Range(0, static_cast<int>(live_.size())), [&](const cv::Range& range) {
-        for (int k = range.start; k < range.end; ++k) {
-          if (!continued[k]) continue;
-          AffineWarp& warp = warps[k];
-          warp.centre = cv::Point2d(to[k].x, to[k].y);
-          warp.linear = live_patches_[k].linear;
-          aligned[k] = align_affine_patch(live_patches_[k].patch, padded, &warp, options_.affine) &&
-                       std::hypot(warp.centre.x - to[k].x, warp.centre.y - to[k].y) <=
-                           options_.max_affine_correction_px;
-        }
-      });
-    }
-    std::vector<cv::Point2f> still_positions;
-    // Every track ends here but those extended below (a cut track ends too: its continuation is a new one).
-    std::vector<char> extended(live_.size(), 0);
-    for (size_t k = 0; k < live_.size(); ++k) {
-      if (!continued[k]) {
-        ++stats.lost;
-        continue;
-      }
-      cv::Point2d at(to[k].x, to[k].y);  // padded coordinates
-      bool refined = true;
-      cv::Matx22d linear = cv::Matx22d::eye();
-      if (affine) {
-        refined = aligned[k];
-        if (refined) {
-          at = warps[k].centre;
-          linear = warps[k].linear;
-        } else {
-          ++affine_failures_;
-        }
-      }
-      if (!mask_.empty()) {  // the refinement may have moved it into a masked region
-        int mx = static_cast<int>(std::floor(at.x - pad_)) % width_;
-        if (mx < 0) mx += width_;
-        const int my = std::clamp(static_cast<int>(std::floor(at.y - pad_)), 0, height_ - 1);
-        if (!mask_.at<uchar>(my, mx)) {
-          ++stats.lost;
-          continue;
-        }
-      }
-      if (!refined) {
-        // Lucas-Kanade's step into this frame is all there is, and it is the biased kind: the track ends at
-        // the previous frame, and a new one starts here (sharing no observation with it).
-        LivePatch fresh;
-        fresh.patch = make_affine_patch(padded, at, options_.affine);
-        ++stats.lost;
-        if (!fresh.patch.valid) continue;
-        float fx = std::fmod(static_cast<float>(at.x) - pad_, static_cast<float>(width_));
-        if (fx < 0) fx += width_;
-        if (fx >= width_) fx -= width_;
-        const float fy = static_cast<float>(at.y) - pad_;
-        still_live.push_back(start_track(frame_index, fx, fy));
-        still_positions.emplace_back(fx, fy);
-        still_patches.push_back(std::move(fresh));
-        continue;
-      }
-      float x = static_cast<float>(at.x) - pad_;
-      const float y = static_cast<float>(at.y) - pad_;
-      x = std::fmod(x, static_cast<float>(width_));
-      if (x < 0) x += width_;
-      if (x >= width_) x -= width_;
-      int& age = moved_frames_[live_[k]];
-      if (moved) ++age;
-      // Each track's own limit, between half and all of max_track_frames: tracks born together (all of
-      // frame 0's) must not be cut together, or the points before and after that frame would share no
-      // track, and the two halves of the map would each keep their own scale. Only frames in which the
-      // camera moved count: a turn on the spot does not change how a feature looks, and cutting every
-      // track during one would leave no point seen both before and after it (the scale would be lost).
-      const int limit = options_.max_track_frames -
-                        static_cast<int>((static_cast<std::uint64_t>(live_[k]) * 2654435761u) %
-                                         static_cast<std::uint64_t>(options_.max_track_frames / 2 + 1));
-      if (options_.max_track_frames > 0 && age >= limit) {
-        // Continue as a new point from here (see KltOptions::max_track_frames), with a new patch when
-        // refining. The new track starts one frame back: its first pair of frames is then measured by the
-        // same track.
-        LivePatch next_patch;
-        if (affine) {
-          next_patch.patch = make_affine_patch(padded, at, options_.affine);
-          if (!next_patch.patch.valid) {
-            ++stats.lost;
-            continue;
-          }
-        }
-        const int next = start_track(frame_index - 1, live_positions_[k].x, live_positions_[k].y);
-        extend_track(next, x, y);
-        moved_frames_[static_cast<std::size_t>(next)] = 1;
-        still_live.push_back(next);
-        still_positions.emplace_back(x, y);
-        if (affine) still_patches.push_back(std::move(next_patch));
-      } else {
-        extend_track(live_[k], x, y);
-        extended[k] = 1;
-        still_live.push_back(live_[k]);
-        still_positions.emplace_back(x, y);
-        if (affine) {
-          still_patches.push_back(std::move(live_patches_[k]));
-          still_patches.back().linear = linear;
-          // Deformed this much, the patch as first seen is a poor template: cut a new one here (the point
-          // stays the same; its observations so far and from now on are each aligned, not chained).
-          if (deformation(linear) > options_.affine_refresh_deformation) {
-            LivePatch fresh;
-            fresh.patch = make_affine_patch(padded, at, options_.affine);
-            if (fresh.patch.valid) still_patches.back() = std::move(fresh);
-          }
-        }
-      }
-    }
-    for (size_t k = 0; k < live_.size(); ++k)
-      if (!extended[k]) close_track(live_[k]);
-    stats.tracked = static_cast<int>(still_live.size());
-    stats.median_flow_px = median(flow);
-    live_positions_ = std::move(still_positions);
+    LiveFlow flow = follow_live_tracks(pyramid, predicted_shift_px, y_min, y_max);
+    if (options_.affine_refinement) refine_affine(padded, &flow);
+    carry_live_tracks(padded, flow, frame_index, &stats);
   } else {
     for (int t : live_) close_track(t);  // no previous frame to track from (cannot happen after the first)
-    still_live.clear();
+    live_.clear();
     live_positions_.clear();
+    live_patches_.clear();
   }
-  live_ = still_live;
-  live_patches_ = std::move(still_patches);
-
-  if (static_cast<int>(live_.size()) < options_.min_features) {
-    cv::Mat mask(gray.size(), CV_8U, cv::Scalar(0));
-    mask.rowRange(static_cast<int>(std::ceil(y_min)), static_cast<int>(std::floor(y_max))).setTo(255);
-    if (!mask_.empty()) cv::bitwise_and(mask, mask_, mask);
-    for (const cv::Point2f& o : live_positions_)
-      cv::circle(mask, cv::Point(cvRound(o.x), cvRound(o.y)), options_.min_distance_px, cv::Scalar(0), -1);
-    std::vector<cv::Point2f> corners;
-    const int wanted = options_.max_features - static_cast<int>(live_.size());
-    cv::goodFeaturesToTrack(gray, corners, wanted, options_.quality_level, options_.min_distance_px, mask, 5);
-    stats.corners_available = static_cast<int>(corners.size());
-    if (!corners.empty()) {
-      cv::cornerSubPix(gray, corners, cv::Size(3, 3), cv::Size(-1, -1),
-                       cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.02));
-    }
-    for (const cv::Point2f& c : corners) {
-      if (!mask_.empty()) {  // the sub-pixel refinement may have moved it into a masked region
-        int mx = static_cast<int>(std::floor(c.x)) % width_;
-        if (mx < 0) mx += width_;
-        if (!mask_.at<uchar>(std::clamp(static_cast<int>(std::floor(c.y)), 0, height_ - 1), mx)) continue;
-      }
-      if (affine) {
-        LivePatch lp;
-        lp.patch = make_affine_patch(padded, cv::Point2d(c.x + pad_, c.y + pad_), options_.affine);
-        if (!lp.patch.valid) continue;  // too little structure to refine: not worth a track
-        live_patches_.push_back(std::move(lp));
-      }
-      live_.push_back(start_track(frame_index, c.x, c.y));
-      live_positions_.push_back(c);
-      ++stats.detected;
-    }
-  } else {
+  if (static_cast<int>(live_.size()) < options_.min_features)
+    detect_new_tracks(gray, padded, frame_index, y_min, y_max, &stats);
+  else
     stats.corners_available = static_cast<int>(live_.size());
-  }
   previous_pyramid_ = std::move(pyramid);
   return stats;
 }

@@ -115,6 +115,16 @@ class KltTracker {
 
  private:
   cv::Mat prepare(const cv::Mat& frame);
+  // add_frame's stages, in order.
+  struct LiveFlow;
+  void measure_tilt(const cv::Mat& gray);
+  LiveFlow follow_live_tracks(const std::vector<cv::Mat>& pyramid, double predicted_shift_px, double y_min,
+                              double y_max) const;
+  void refine_affine(const cv::Mat& padded, LiveFlow* flow) const;
+  void carry_live_tracks(const cv::Mat& padded, LiveFlow& flow, int frame_index, FrameTrackStats* stats);
+  void detect_new_tracks(const cv::Mat& gray, const cv::Mat& padded, int frame_index, double y_min,
+                         double y_max, FrameTrackStats* stats);
+  bool unmasked(double x, double y) const;      // working-image coordinates; true without a mask
   using Packed = std::array<std::uint16_t, 2>;  // x, y in units of quantum_ pixels
   struct StoredTrack {
     int first_frame = 0;
