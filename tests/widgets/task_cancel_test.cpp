@@ -8,6 +8,8 @@
 #include <QApplication>
 #include <QDialog>
 #include <QDir>
+#include <QFile>
+#include <QFileInfo>
 #include <QStatusBar>
 #include <QTest>
 #include <QTimer>
@@ -15,10 +17,14 @@
 #include <QUndoStack>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <thread>
 
 #include "app/studio/main_window.h"
+#include "app/studio/studio_tasks.h"
+#include "processing/export/tour_export.h"
+#include "tests/processing/registration/synthetic_walls.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
@@ -151,6 +157,70 @@ TEST(TaskCancel, ExportTourWritesNothing) {
   cancel_from_the_status_bar(s, "Export tour", [&] { export_tour->trigger(); });
   EXPECT_FALSE(QDir(target).exists());
   EXPECT_FALSE(QDir(target + ".partial").exists());
+}
+
+TEST(TaskCancel, PlacePathOnPlan) {
+  test::TestStudio s;
+  // A walk synthesised in a room with its points on the walls, moved off the plan: placing has work to do.
+  Project project;
+  project.plan = test::symmetric_room();
+  project.capture.camera_height_m = 1.6;
+  std::vector<Eigen::Vector2d> walk;
+  for (double x = 1.0; x < 9.0; x += 0.1) walk.push_back({x, 3.0 + 0.8 * std::sin(x * 0.9)});
+  Similarity2 moved;
+  moved.rotation = 0.4;
+  moved.translation = {-2.0, 5.0};
+  const test::SyntheticPiece piece = test::synthesise(project.plan, walk, moved, 9);
+  project.path = piece.path;
+  project.path_points = piece.points;
+  s.window.document().reset(project, "");
+  QAction* place = action_named(s.window, "Place path on plan");
+  ASSERT_NE(place, nullptr);
+  ASSERT_TRUE(place->isEnabled());
+  cancel_from_the_status_bar(s, "Place path on plan", [&] { place->trigger(); });
+}
+
+TEST(TaskCancel, ImportTourWritesNoProject) {
+  const auto& t = test::test_project("cancel-import-tour");
+  test::TestStudio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  Project exported = t.project;
+  exported.keyframes.indices = {exported.path.frames.front().index, exported.path.frames.back().index};
+  exported.keyframes.rank = {0, 1};
+  const QString package = QDir(t.folder).filePath("to_import.zip");
+  export_tour(exported, TourExportOptions::from_project(exported, package.toStdString()));
+  const QString made = QDir(t.folder).filePath("imported.plenopath");
+  s.window.ask_tour_package = [&] { return package; };
+  s.window.ask_imported_project = [&](const QString&) { return made; };
+  QAction* import = action_named(s.window, "Import tour (to edit it again)…");
+  ASSERT_NE(import, nullptr);
+  ASSERT_TRUE(import->isEnabled());
+  cancel_from_the_status_bar(s, "Import tour", [&] { import->trigger(); });
+  EXPECT_FALSE(QFileInfo::exists(made));
+  EXPECT_EQ(s.window.document().file_name(), t.project_file);
+}
+
+TEST(TaskCancel, RenderCgScene) {
+  const auto& t = test::test_project("cancel-render");
+  test::TestStudio s;
+  ASSERT_TRUE(s.window.open_project(t.project_file));
+  const QString scene = QDir(t.folder).filePath("room.pov");
+  QFile file(scene);
+  ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+  file.write(
+      "#version 3.7;\nlight_source { <2, 2.8, 1> color rgb 1 }\n"
+      "box { <-5, 0, -3>, <5, 3, 3> inverse pigment { checker rgb 0.8 rgb 0.2 } }\n");
+  file.close();
+  widgets::CgSceneChoices choices;
+  choices.scene = scene.toStdString();
+  choices.out_dir = QDir(t.folder).filePath("rendered").toStdString();
+  choices.use_project_path = false;
+  choices.waypoints = "-4,0 4,0";
+  choices.step_m = 2.0;  // five frames: the render is not what is tested
+  choices.options.povray.width = 64;
+  cancel_from_the_status_bar(s, "Render CG scene", [&] {
+    s.window.tasks().start("Render CG scene", studio::render_cg_scene_task(choices));
+  });
 }
 
 }  // namespace
