@@ -66,7 +66,7 @@ bool natural_less(const std::string& a, const std::string& b) {
   return a < b;
 }
 
-namespace {
+namespace frame_source_detail {
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -83,7 +83,7 @@ bool is_depth_extension(const std::string& ext) {
 }
 
 // The last run of digits in a file stem, as a number (-1 if none or absurdly long).
-long long trailing_number(const std::string& stem, std::string* pattern = nullptr, int* digits = nullptr) {
+long long trailing_number(const std::string& stem, std::string* pattern, int* digits) {
   std::size_t end = stem.size();
   while (end > 0 && !std::isdigit(static_cast<unsigned char>(stem[end - 1]))) --end;
   if (end == 0) return -1;
@@ -97,7 +97,19 @@ long long trailing_number(const std::string& stem, std::string* pattern = nullpt
 
 std::string stem_of(const std::string& name) { return fs::path(name).stem().string(); }
 
-}  // namespace
+void check_aspect(int width, int height, bool require_2to1, const std::string& where) {
+  if (width <= 0 || height <= 0) throw file_error(where, "frames have no size");
+  if (require_2to1 && std::abs(width - 2 * height) > 1) {
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3g", double(width) / height);
+    throw file_error(where, "frames are " + std::to_string(width) + "x" + std::to_string(height) +
+                                " (aspect " + ratio +
+                                ":1), not 2:1; equirectangular 360° frames must be twice as wide as high "
+                                "(import anyway with require_2to1 = false / --any-aspect)");
+  }
+}
+
+}  // namespace frame_source_detail
 
 namespace frame_source_detail {
 
@@ -142,86 +154,11 @@ cv::Mat shrink_to_width(const cv::Mat& image, int max_width) {
 namespace {
 
 using frame_source_detail::Backend;
-using frame_source_detail::shrink_to_width;
+using frame_source_detail::is_frame_extension;
+using frame_source_detail::looks_like_video;
+using frame_source_detail::open_folder;
+using frame_source_detail::open_video;
 using frame_source_detail::to_bgr8;
-
-void check_aspect(int width, int height, bool require_2to1, const std::string& where) {
-  if (width <= 0 || height <= 0) throw file_error(where, "frames have no size");
-  if (require_2to1 && std::abs(width - 2 * height) > 1) {
-    char ratio[32];
-    std::snprintf(ratio, sizeof ratio, "%.3g", double(width) / height);
-    throw file_error(where, "frames are " + std::to_string(width) + "x" + std::to_string(height) +
-                                " (aspect " + ratio +
-                                ":1), not 2:1; equirectangular 360° frames must be twice as wide as high "
-                                "(import anyway with require_2to1 = false / --any-aspect)");
-  }
-}
-
-}  // namespace
-
-namespace {
-
-struct FolderBackend : Backend {
-  const FrameSource::Impl* impl = nullptr;
-  fs::path folder;
-  cv::Mat read(int i) override {
-    const std::string path = (folder / impl->names[i]).string();
-    cv::Mat raw;
-    try {
-      raw = cv::imread(path, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-      throw file_error(path, std::string("cannot decode frame: ") + e.what());
-    }
-    if (raw.empty()) throw file_error(path, "cannot decode frame (corrupt or unreadable image)");
-    cv::Mat bgr = to_bgr8(raw);
-    if (bgr.cols != impl->width || bgr.rows != impl->height)
-      throw file_error(path, "frame is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
-                                 ", the capture's frames are " + std::to_string(impl->width) + "x" +
-                                 std::to_string(impl->height));
-    return bgr;
-  }
-  cv::Mat read_thumbnail(int i, int max_width) override {
-    const std::string ext = lower(fs::path(impl->names[i]).extension().string());
-    if (ext != ".jpg" && ext != ".jpeg") return shrink_to_width(read(i), max_width);
-    // JPEG decodes at 1/2, 1/4 or 1/8 size directly: much faster for thumbnails.
-    int flag = cv::IMREAD_COLOR;
-    if (impl->width >= 8 * max_width)
-      flag = cv::IMREAD_REDUCED_COLOR_8;
-    else if (impl->width >= 4 * max_width)
-      flag = cv::IMREAD_REDUCED_COLOR_4;
-    else if (impl->width >= 2 * max_width)
-      flag = cv::IMREAD_REDUCED_COLOR_2;
-    const std::string path = (folder / impl->names[i]).string();
-    cv::Mat small;
-    try {
-      small = cv::imread(path, flag);
-    } catch (const cv::Exception& e) {
-      throw file_error(path, std::string("cannot decode frame: ") + e.what());
-    }
-    if (small.empty()) throw file_error(path, "cannot decode frame (corrupt or unreadable image)");
-    return shrink_to_width(small, max_width);
-  }
-};
-
-struct VideoBackend : Backend {
-  const FrameSource::Impl* impl = nullptr;
-  std::mutex mutex;
-  std::unique_ptr<VideoDecoder> decoder;  // frame-exact: decodes on when reading in order, else seeks
-
-  cv::Mat read(int i) override {
-    const long long raw = impl->numbers[i];
-    cv::Mat frame;
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      frame = decoder->read(static_cast<int>(raw));
-    }
-    if (frame.cols != impl->width || frame.rows != impl->height)
-      throw file_error(impl->source, "frame " + std::to_string(raw) + " is " + std::to_string(frame.cols) +
-                                         "x" + std::to_string(frame.rows) + ", expected " +
-                                         std::to_string(impl->width) + "x" + std::to_string(impl->height));
-    return frame;
-  }
-};
 
 struct GeneratorBackend : Backend {
   const FrameSource::Impl* impl = nullptr;
@@ -243,333 +180,7 @@ struct GeneratorBackend : Backend {
   }
 };
 
-// Numbering of a folder's files: the common name pattern and the usual step between numbers, so that gaps
-// are reported as missing frames and time stamps follow the numbers.
-struct Numbering {
-  bool consistent = false;  // every file has a number, one name pattern, unique numbers
-  bool counter = false;     // ... and the numbers count frames: few gaps (not clock times or dates)
-  long long first = 0;      // number of the first file in sort order
-  long long step = 1;       // most common difference between consecutive numbers
-  int digits = 0;           // zero-padded width, if all names share it
-  std::string pattern;      // stem with the number replaced by '#'
-  std::string extension;
-};
-
-Numbering analyse_numbering(const std::vector<std::string>& sorted_names) {
-  Numbering n;
-  if (sorted_names.empty()) return n;
-  std::vector<long long> numbers;
-  std::map<long long, int> steps;
-  for (const std::string& name : sorted_names) {
-    std::string pattern;
-    int digits = 0;
-    const long long v = trailing_number(stem_of(name), &pattern, &digits);
-    if (v < 0) return n;
-    if (numbers.empty()) {
-      n.pattern = pattern;
-      n.digits = digits;
-      n.extension = fs::path(name).extension().string();
-    } else if (pattern != n.pattern) {
-      return n;
-    }
-    if (digits != n.digits) n.digits = 0;
-    if (!numbers.empty()) {
-      if (v <= numbers.back()) return n;  // duplicates or odd order: no numbering to trust
-      ++steps[v - numbers.back()];
-    }
-    numbers.push_back(v);
-  }
-  n.consistent = true;
-  n.first = numbers.front();
-  int best = 0;
-  for (const auto& [step, count] : steps)
-    if (count > best) best = count, n.step = step;
-  // Names like VID_120059, VID_120100 (clock times) leave big "gaps": such numbers are not frame counters,
-  // so neither gaps nor time stamps are taken from them.
-  const long long span = (numbers.back() - numbers.front()) / n.step + 1;
-  const long long missing = span - static_cast<long long>(numbers.size());
-  n.counter = 4 * missing <= static_cast<long long>(numbers.size());
-  return n;
-}
-
-std::string numbered_name(const Numbering& n, long long number) {
-  std::string digits = std::to_string(number);
-  if (n.digits > static_cast<int>(digits.size()))
-    digits = std::string(n.digits - digits.size(), '0') + digits;
-  std::string stem = n.pattern;
-  stem.replace(stem.find('#'), 1, digits);
-  return stem + n.extension;
-}
-
-std::vector<std::string> list_files(const fs::path& folder, bool (*accept)(const std::string&)) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  fs::directory_iterator it(folder, ec);
-  if (ec) throw file_error(folder.string(), "cannot list folder: " + ec.message());
-  for (const fs::directory_entry& entry : it) {
-    std::error_code e2;
-    if (!entry.is_regular_file(e2)) continue;
-    const std::string name = entry.path().filename().string();
-    if (name.empty() || name[0] == '.') continue;
-    if (accept(entry.path().extension().string())) names.push_back(name);
-  }
-  std::sort(names.begin(), names.end(), natural_less);
-  return names;
-}
-
-void match_depth_files(FrameSource::Impl& impl) {
-  impl.depth_names.assign(impl.names.size(), "");
-  impl.depth_matches = 0;
-  if (impl.options.depth_folder.empty()) return;
-  const fs::path folder(impl.options.depth_folder);
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw file_error(folder.string(), "depth folder does not exist");
-  const std::vector<std::string> files = list_files(folder, is_depth_extension);
-  std::map<std::string, std::string> by_stem;
-  std::map<long long, std::string> by_number;
-  std::map<long long, int> number_count;
-  for (const std::string& f : files) {
-    by_stem.emplace(stem_of(f), f);
-    const long long v = trailing_number(stem_of(f));
-    if (v >= 0) {
-      by_number.emplace(v, f);
-      ++number_count[v];
-    }
-  }
-  for (std::size_t i = 0; i < impl.names.size(); ++i) {
-    std::string match;
-    if (impl.kind == CaptureKind::kImageFolder) {
-      auto it = by_stem.find(stem_of(impl.names[i]));
-      if (it != by_stem.end()) match = it->second;
-    }
-    if (match.empty() && impl.numbers[i] >= 0 && number_count[impl.numbers[i]] == 1) {
-      auto it = by_number.find(impl.numbers[i]);
-      if (it != by_number.end()) match = it->second;
-    }
-    impl.depth_names[i] = match;
-    impl.depth_matches += !match.empty();
-  }
-}
-
-struct FolderScan {
-  std::vector<std::string> all_names;  // natural order
-  Numbering numbering;
-};
-
-FolderScan scan_folder_names(const fs::path& folder) {
-  FolderScan scan;
-  scan.all_names = list_files(folder, is_frame_extension);
-  scan.numbering = analyse_numbering(scan.all_names);
-  return scan;
-}
-
-double folder_timestamp(const Numbering& numbering, long long number, int position, double rate) {
-  if (numbering.counter && number >= 0)
-    return double(number - numbering.first) / double(numbering.step) / rate;
-  return position / rate;
-}
-
-std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const FrameSourceOptions& options,
-                                               const std::vector<std::string>* given_names) {
-  auto impl = std::make_unique<FrameSource::Impl>();
-  impl->kind = CaptureKind::kImageFolder;
-  impl->source = folder.string();
-  impl->options = options;
-  impl->frame_rate = options.folder_frame_rate;
-  const FolderScan scan = scan_folder_names(folder);
-  if (scan.all_names.empty() && !given_names)
-    throw file_error(folder.string(), "no frames found (expected JPEG, PNG, TIFF or EXR images)");
-
-  // Which files to look at: the range and stride over the sorted list, or the names a project lists.
-  std::vector<std::pair<int, std::string>> candidates;  // (position in sorted list, name)
-  std::map<std::string, int> position_of;
-  for (std::size_t p = 0; p < scan.all_names.size(); ++p)
-    position_of[scan.all_names[p]] = static_cast<int>(p);
-  if (given_names) {
-    for (const std::string& name : *given_names) {
-      auto it = position_of.find(name);
-      if (it == position_of.end()) {
-        long long v = trailing_number(stem_of(name));
-        impl->skipped.push_back(
-            {static_cast<int>(v), name, "missing (listed in the project, not in the folder)"});
-        continue;
-      }
-      candidates.emplace_back(it->second, name);
-    }
-  } else {
-    const int last = options.last_frame < 0
-                         ? static_cast<int>(scan.all_names.size()) - 1
-                         : std::min(options.last_frame, static_cast<int>(scan.all_names.size()) - 1);
-    if (options.first_frame > last)
-      throw file_error(folder.string(), "first frame " + std::to_string(options.first_frame) +
-                                            " is beyond the " + std::to_string(scan.all_names.size()) +
-                                            " frames in the folder");
-    for (int p = options.first_frame; p <= last; p += options.stride)
-      candidates.emplace_back(p, scan.all_names[p]);
-
-    // Gaps in the numbering between kept files: missing frames (listed, never fatal).
-    const Numbering& nb = scan.numbering;
-    if (nb.counter && options.stride == 1 && candidates.size() > 1) {
-      for (std::size_t k = 1; k < candidates.size(); ++k) {
-        const long long a = trailing_number(stem_of(candidates[k - 1].second));
-        const long long b = trailing_number(stem_of(candidates[k].second));
-        if (b - a <= nb.step) continue;
-        const long long missing = (b - a) / nb.step - 1;
-        if (missing <= 0) continue;
-        if (missing <= 100) {
-          for (long long v = a + nb.step; v < b; v += nb.step)
-            impl->skipped.push_back(
-                {static_cast<int>(v), numbered_name(nb, v), "missing (gap in the numbering)"});
-        } else {
-          impl->skipped.push_back({static_cast<int>(a + nb.step), numbered_name(nb, a + nb.step),
-                                   "missing: " + std::to_string(missing) + " frames up to " +
-                                       numbered_name(nb, b - nb.step) + " (gap in the numbering)"});
-        }
-      }
-    }
-  }
-
-  // Headers: size and obvious corruption; the capture's size is the one most frames have.
-  struct Probe {
-    int position;
-    std::string name;
-    ImageHeader header;
-  };
-  std::vector<Probe> probes;
-  probes.reserve(candidates.size());
-  std::map<std::pair<int, int>, int> size_votes;
-  for (const auto& [position, name] : candidates) {
-    const std::string path = (folder / name).string();
-    ImageHeader h = read_image_header(path);
-    if (h.ok && options.verify_by_decoding) {
-      cv::Mat m;
-      try {
-        m = cv::imread(path, cv::IMREAD_UNCHANGED);
-      } catch (const cv::Exception&) {
-      }
-      if (m.empty())
-        h.ok = false, h.problem = "corrupt image (does not decode)";
-      else
-        h.width = m.cols, h.height = m.rows;
-    }
-    if (h.ok && h.width <= 0) {  // a format whose header we do not parse: decode once to learn the size
-      cv::Mat m;
-      try {
-        m = cv::imread(path, cv::IMREAD_UNCHANGED);
-      } catch (const cv::Exception&) {
-      }
-      if (m.empty())
-        h.ok = false, h.problem = "corrupt image (does not decode)";
-      else
-        h.width = m.cols, h.height = m.rows;
-    }
-    if (h.ok) ++size_votes[{h.width, h.height}];
-    probes.push_back({position, name, h});
-  }
-  int best = 0;
-  for (const auto& [size, votes] : size_votes)
-    if (votes > best) best = votes, impl->width = size.first, impl->height = size.second;
-
-  for (const Probe& p : probes) {
-    const long long number = scan.numbering.consistent ? trailing_number(stem_of(p.name)) : -1;
-    if (!p.header.ok) {
-      impl->skipped.push_back({static_cast<int>(number), p.name, p.header.problem});
-      continue;
-    }
-    if (p.header.width != impl->width || p.header.height != impl->height) {
-      impl->skipped.push_back({static_cast<int>(number), p.name,
-                               "size " + std::to_string(p.header.width) + "x" +
-                                   std::to_string(p.header.height) + " differs from the capture's " +
-                                   std::to_string(impl->width) + "x" + std::to_string(impl->height)});
-      continue;
-    }
-    impl->names.push_back(p.name);
-    impl->numbers.push_back(number);
-    impl->timestamps.push_back(
-        folder_timestamp(scan.numbering, number, p.position, options.folder_frame_rate));
-  }
-  std::sort(impl->skipped.begin(), impl->skipped.end(),
-            [](const SkippedFrame& a, const SkippedFrame& b) { return natural_less(a.name, b.name); });
-  if (impl->names.empty())
-    throw file_error(
-        folder.string(),
-        "no usable frame among " + std::to_string(candidates.size()) + " images (" +
-            (impl->skipped.empty() ? std::string("none listed")
-                                   : impl->skipped.front().name + ": " + impl->skipped.front().reason) +
-            ")");
-  check_aspect(impl->width, impl->height, options.require_2to1, folder.string());
-  auto backend = std::make_unique<FolderBackend>();
-  backend->impl = impl.get();
-  backend->folder = folder;
-  impl->backend = std::move(backend);
-  return impl;
-}
-
-std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const FrameSourceOptions& options) {
-  auto impl = std::make_unique<FrameSource::Impl>();
-  impl->kind = CaptureKind::kVideo;
-  impl->source = path;
-  impl->options = options;
-  auto backend = std::make_unique<VideoBackend>();
-  backend->impl = impl.get();
-  backend->decoder = std::make_unique<VideoDecoder>(path);  // throws Error naming the file
-  VideoDecoder& decoder = *backend->decoder;
-  double fps = decoder.frame_rate();
-  if (!(fps > 0.0) || !std::isfinite(fps) || fps > 1000.0) fps = 30.0;
-  impl->frame_rate = fps;
-
-  // The first frame tells the true size (and that the stream decodes at all); the last that the packets
-  // keep their promise. If either fails, only decoding every frame tells which frames there are.
-  const auto decodes = [&](int frame) {
-    try {
-      return decoder.read(frame);
-    } catch (const Error&) {
-      return cv::Mat();
-    }
-  };
-  const long long packet_count = decoder.frame_count();
-  cv::Mat first = packet_count > 0 ? decodes(0) : cv::Mat();
-  if (packet_count > 0 &&
-      (first.empty() || (packet_count > 1 && decodes(decoder.frame_count() - 1).empty()))) {
-    decoder.index_by_decoding();
-    first = decoder.frame_count() > 0 ? decodes(0) : cv::Mat();
-  }
-  if (first.empty()) throw file_error(path, "video has no decodable frame");
-  impl->width = first.cols;
-  impl->height = first.rows;
-  const long long count = decoder.frame_count();
-  const long long promised =
-      std::max(packet_count, decoder.packets_end_early() ? decoder.container_frame_count() : 0);
-  if (count < promised)
-    impl->skipped.push_back({static_cast<int>(count), "frame " + std::to_string(count),
-                             "missing: the stream ends after " + std::to_string(count) +
-                                 " frames though the container says " + std::to_string(promised)});
-  check_aspect(impl->width, impl->height, options.require_2to1, path);
-
-  const long long last =
-      options.last_frame < 0 ? count - 1 : std::min<long long>(options.last_frame, count - 1);
-  if (options.first_frame > last)
-    throw file_error(path, "first frame " + std::to_string(options.first_frame) + " is beyond the video's " +
-                               std::to_string(count) + " frames");
-  for (long long raw = options.first_frame; raw <= last; raw += options.stride) {
-    impl->names.push_back("frame " + std::to_string(raw));
-    impl->numbers.push_back(raw);
-    impl->timestamps.push_back(
-        decoder.time_s(static_cast<int>(raw)));  // the frame's own PTS: right for variable rates
-  }
-  impl->backend = std::move(backend);
-  return impl;
-}
-
-bool looks_like_video(const std::string& path) {
-  const std::string e = lower(fs::path(path).extension().string());
-  return e == ".mp4" || e == ".mov" || e == ".mkv" || e == ".avi" || e == ".m4v" || e == ".webm" ||
-         e == ".insv";
-}
-
 }  // namespace
-
-void frame_source_detail::match_depth(FrameSource::Impl& impl) { match_depth_files(impl); }
 
 // ---------------------------------------------------------------------------------------------------------
 

@@ -1,6 +1,8 @@
 #pragma once
-// Inside FrameSource: its state and the backend interface, shared by frame_source.cpp (folders, videos,
-// generators) and multi_head_capture.cpp. Not for use outside processing/frame_source*.cpp.
+// Inside FrameSource: its state and the backend interface, shared by frame_source.cpp (generators),
+// frame_source_folder.cpp, frame_source_video.cpp and multi_head_capture.cpp. Not for use outside
+// processing/frame_source*.cpp.
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +52,25 @@ struct FrameSource::Impl {
 namespace frame_source_detail {
 // Matches options.depth_folder's files to impl's frames (by stem, else by number).
 void match_depth(FrameSource::Impl& impl);
+
+// File names (frame_source.cpp).
+std::string lower(std::string s);
+bool is_frame_extension(const std::string& ext);
+bool is_depth_extension(const std::string& ext);
+// The last run of digits in a file stem, as a number (-1 if none or absurdly long); `pattern` gets the stem
+// with that run replaced by '#', `digits` its length.
+long long trailing_number(const std::string& stem, std::string* pattern = nullptr, int* digits = nullptr);
+std::string stem_of(const std::string& name);
+// Throws naming `where` unless the frames have a size and, when required, are 2:1.
+void check_aspect(int width, int height, bool require_2to1, const std::string& where);
+
+// The backends: a folder of frames (frame_source_folder.cpp), optionally only `given_names` (a project's
+// list); a video (frame_source_video.cpp).
+std::unique_ptr<FrameSource::Impl> open_folder(const std::filesystem::path& folder,
+                                               const FrameSourceOptions& options,
+                                               const std::vector<std::string>* given_names);
+std::unique_ptr<FrameSource::Impl> open_video(const std::string& path, const FrameSourceOptions& options);
+bool looks_like_video(const std::string& path);
 }  // namespace frame_source_detail
 
 }  // namespace plenopath
