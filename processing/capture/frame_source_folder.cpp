@@ -258,18 +258,8 @@ std::unique_ptr<FrameSource::Impl> open_folder(const fs::path& folder, const Fra
   for (const auto& [position, name] : candidates) {
     const std::string path = (folder / name).string();
     ImageHeader h = read_image_header(path);
-    if (h.ok && options.verify_by_decoding) {
-      cv::Mat m;
-      try {
-        m = cv::imread(path, cv::IMREAD_UNCHANGED);
-      } catch (const cv::Exception&) {
-      }
-      if (m.empty())
-        h.ok = false, h.problem = "corrupt image (does not decode)";
-      else
-        h.width = m.cols, h.height = m.rows;
-    }
-    if (h.ok && h.width <= 0) {  // a format whose header we do not parse: decode once to learn the size
+    // Decoded when asked to, or when the header is of a format not parsed here (to learn the size).
+    if (h.ok && (options.verify_by_decoding || h.width <= 0)) {
       cv::Mat m;
       try {
         m = cv::imread(path, cv::IMREAD_UNCHANGED);
