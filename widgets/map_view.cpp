@@ -31,6 +31,7 @@
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/walk/walk_route.h"
 #include "widgets/anchor_commands.h"
+#include "widgets/anchor_editor.h"
 #include "widgets/map_hotspot_markers.h"
 #include "widgets/map_pieces.h"
 #include "widgets/project_document.h"
@@ -794,7 +795,8 @@ bool MapView::handle_anchor_event(QEvent* e) {
 void MapView::update_anchor_drag(const QPoint& pixel, bool snap) {
   drag_.target = anchor_target(pixel, snap, &drag_.snapped);
   const CameraPath& path = document_.project().path;
-  drag_.anchors = anchors_with(document_.project().anchors, drag_.frame, drag_.target);
+  // From the anchors of an edit still being computed, so a quick second drag keeps the first anchor.
+  drag_.anchors = anchors_with(AnchorEditor::of(document_).anchors(), drag_.frame, drag_.target);
   try {
     drag_.preview = preview_path_with_anchors(path, drag_.anchors);
     drag_.valid = true;
@@ -832,27 +834,38 @@ void MapView::end_anchor_drag(bool apply) {
   drag_ = AnchorDrag{};
   set_polydata(ghost_path_actor_, vtkNew<vtkPolyData>().Get());
   if (apply && drag.valid) {
-    const bool existing = std::any_of(document_.project().anchors.begin(), document_.project().anchors.end(),
+    AnchorEditor& editor = AnchorEditor::of(document_);
+    const bool existing = std::any_of(editor.anchors().begin(), editor.anchors().end(),
                                       [&](const Anchor& a) { return a.frame == drag.frame; });
-    try {
-      auto* command = new SetAnchorsCommand(
-          document_,
-          existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
-          drag.anchors, PathCorrection::kRefine);
-      const bool refined = command->applied() == PathCorrection::kRefine;
-      document_.undo_stack()->push(command);
+    // The correction is computed on a worker; the preview stays drawn until it lands (the document's
+    // change redraws everything) or is refused (back to the document's path).
+    AnchorEditor::Callbacks callbacks;
+    callbacks.context = this;
+    const int count = static_cast<int>(drag.anchors.size());
+    callbacks.landed = [this, frame = drag.frame, target = drag.target, count](PathCorrection applied) {
       emit message(
           tr("Frame %1 anchored at (%2, %3) m; %4")
-              .arg(drag.frame)
-              .arg(drag.target.x(), 0, 'f', 2)
-              .arg(drag.target.y(), 0, 'f', 2)
-              .arg(refined ? tr("path refined with %n anchor(s)", "", static_cast<int>(drag.anchors.size()))
-                           : tr("path warped (long path: Process > Refine path with anchors for the full "
-                                "correction)")));
-      return;  // the document's change redraws everything
-    } catch (const Error& e) {
-      emit message(QString::fromStdString(e.what()));
-    }
+              .arg(frame)
+              .arg(target.x(), 0, 'f', 2)
+              .arg(target.y(), 0, 'f', 2)
+              .arg(applied == PathCorrection::kRefine
+                       ? tr("path refined with %n anchor(s)", "", count)
+                       : tr("path warped (long path: Process > Refine path with anchors for the full "
+                            "correction)")));
+    };
+    callbacks.refused = [this](const QString& why) {
+      emit message(why);
+      if (drag_.active) return;  // a new drag draws its own preview
+      set_path_geometry(document_.project().path);
+      rebuild_anchors(drawn_path_, document_.project().anchors);
+      rebuild_current();
+      request_render();
+    };
+    editor.request(
+        existing ? tr("Move anchor of frame %1").arg(drag.frame) : tr("Anchor frame %1").arg(drag.frame),
+        drag.anchors, PathCorrection::kRefine, callbacks);
+    if (editor.busy()) emit message(tr("Frame %1: correcting the path...").arg(drag.frame));
+    return;
   }
   // Cancelled or refused: back to the document's path and anchors.
   set_path_geometry(document_.project().path);
