@@ -155,10 +155,12 @@ class MapView : public QVTKOpenGLNativeWidget {
     bool moved = false;
     Eigen::Vector2d target = Eigen::Vector2d::Zero();
     bool snapped = false;
-    bool valid = false;        // the preview could be computed
-    Anchors anchors;           // the document's anchors with the dragged one moved
-    CameraPath preview;        // the path bent by them
-    bool ghost_drawn = false;  // the path before the drag is drawn (once per drag)
+    bool valid = false;              // the preview could be computed
+    Anchors anchors;                 // the document's anchors with the dragged one moved
+    CameraPath preview;              // the path bent by them
+    bool ghost_drawn = false;        // the path before the drag is drawn (once per drag)
+    QPoint previewed_pixel{-1, -1};  // where the preview was last computed, and with which snap
+    bool previewed_snap = false;
   };
 
   ProjectDocument& document_;
