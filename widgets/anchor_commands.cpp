@@ -5,28 +5,19 @@
 
 #include "model/error.h"
 #include "model/project.h"
-#include "processing/anchors/anchor_refinement.h"
-#include "processing/visibility/visibility.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
 
-SetAnchorsCommand::SetAnchorsCommand(ProjectDocument& document, const QString& text, Anchors after,
-                                     PathCorrection correction)
-    : QUndoCommand(text), document_(document), before_(document.project().anchors), after_(std::move(after)) {
-  const CameraPath& path = document.project().path;
-  if (correction == PathCorrection::kNone || path.empty() || after_.empty()) return;
-  // Both throw before anything changes.
-  if (correction == PathCorrection::kRefine && path.size() <= kMaxFramesRefinedAtOnce) {
-    path_after_ = refine_path_with_anchors(path, after_);
-    path_after_->scale_source = "anchors";
-    applied_ = PathCorrection::kRefine;
-  } else {
-    path_after_ = preview_path_with_anchors(path, after_);
-    applied_ = PathCorrection::kWarp;
-  }
-  path_before_ = path;
-  visibility_after_ = cells_following_path(document.project(), *path_after_);
+SetAnchorsCommand::SetAnchorsCommand(ProjectDocument& document, const QString& text, AnchorEditResult edit)
+    : QUndoCommand(text),
+      document_(document),
+      before_(document.project().anchors),
+      after_(std::move(edit.anchors)),
+      path_after_(std::move(edit.path)),
+      visibility_after_(std::move(edit.visibility)),
+      applied_(edit.applied) {
+  if (path_after_) path_before_ = document.project().path;
   if (visibility_after_) visibility_before_ = document.project().visibility;
 }
 
@@ -52,15 +43,6 @@ void SetAnchorsCommand::redo() {
         if (visibility_after_) p.visibility = *visibility_after_;
       },
       flags);
-}
-
-std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path) {
-  if (project.visibility.empty()) return std::nullopt;
-  try {
-    return VisibilityIndex(project.plan).cells_along_path(moved_path);
-  } catch (const Error&) {
-    return VisibilityCells{};  // e.g. the plan has no occluders left: no cells rather than stale ones
-  }
 }
 
 Anchors anchors_with(const Anchors& anchors, int frame, const Eigen::Vector2d& position) {

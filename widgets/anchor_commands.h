@@ -4,36 +4,32 @@
 // processing/anchors/anchor_refinement.h; 0.1 s for 3 000 frames), or on very long paths the fast warp
 // between anchors that the map previews while dragging. Removing anchors leaves the path as it is. Undo
 // restores the anchors and the path together.
+//
+// The command records; it computes nothing. The correction and the cells that follow the corrected path
+// are computed on a worker (processing/anchors/anchor_edit.h, run by widgets/anchor_editor.h, which also
+// drops a result whose project changed meanwhile) and the command stores before and after.
 #include <QUndoCommand>
 #include <optional>
 
 #include "model/anchors.h"
 #include "model/camera_path.h"
 #include "model/visibility_cells.h"
-
-namespace plenopath {
-struct Project;
-}
+#include "processing/anchors/anchor_edit.h"
 
 namespace plenopath::widgets {
 
 class ProjectDocument;
 
-// How an anchor edit moves the path.
-enum class PathCorrection {
-  kNone,    // the path stays (removing anchors, a heading-only edit)
-  kWarp,    // the fast piecewise warp (what the map previews while dragging)
-  kRefine,  // the global refinement; the warp instead beyond kMaxFramesRefinedAtOnce frames
-};
-// Longest path refined synchronously when an anchor is placed (about a second on two cores); longer paths
-// get the warp and the author runs Process > Refine path with anchors (a cancellable task).
-constexpr std::size_t kMaxFramesRefinedAtOnce = 20000;
+using plenopath::cells_following_path;
+using plenopath::kMaxFramesRefinedAtOnce;
+using plenopath::PathCorrection;
 
-// The anchors after an edit: `after` replaces them all, and the path is corrected as `correction` says
-// (throws plenopath::Error when an anchor names a frame the path does not have; nothing changes then).
+// The anchors after an edit, as computed by edit_anchors() from the document's present project: `edit`
+// replaces the anchors, and the path and its cells when it has them. The "before" is read from the
+// document when the command is made.
 class SetAnchorsCommand : public QUndoCommand {
  public:
-  SetAnchorsCommand(ProjectDocument& document, const QString& text, Anchors after, PathCorrection correction);
+  SetAnchorsCommand(ProjectDocument& document, const QString& text, AnchorEditResult edit);
   // How the path was corrected (kNone when it was not).
   PathCorrection applied() const { return applied_; }
   void undo() override;
@@ -49,12 +45,6 @@ class SetAnchorsCommand : public QUndoCommand {
   std::optional<VisibilityCells> visibility_after_;
   PathCorrection applied_ = PathCorrection::kNone;
 };
-
-// The visibility cells for `moved_path` when the path of `project` moves: recomputed from the plan when the
-// project had cells (about 15 ms on the office sample), empty when they cannot be (no occluders); nullopt
-// when the project had none, so there is nothing to keep up to date. Cells of the old path would colour the
-// map and drive the visibility sampler with events at the wrong places.
-std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path);
 
 // `anchors` with the anchor of `frame` set to `position` (added when the frame has none; an existing
 // anchor keeps its heading), sorted by frame.

@@ -16,6 +16,7 @@
 
 #include "model/error.h"
 #include "widgets/anchor_commands.h"
+#include "widgets/anchor_editor.h"
 #include "widgets/project_document.h"
 
 namespace plenopath::widgets {
@@ -186,13 +187,11 @@ void AnchorsPanel::on_item_changed(QTableWidgetItem* item) {
       return;
   }
   if (anchors == p.anchors) return;
-  try {
-    // Every edit corrects the path at once, as a drag on the map does.
-    document_.undo_stack()->push(
-        new SetAnchorsCommand(document_, what, std::move(anchors), PathCorrection::kRefine));
-  } catch (const Error& e) {
-    show_problem(QString::fromStdString(e.what()));
-  }
+  // Every edit corrects the path, as a drag on the map does: on a worker; one undo step when it lands.
+  AnchorEditor::Callbacks callbacks;
+  callbacks.context = this;
+  callbacks.refused = [this](const QString& why) { show_problem(why); };
+  AnchorEditor::of(document_).request(what, std::move(anchors), PathCorrection::kRefine, callbacks);
 }
 
 void AnchorsPanel::delete_selected() {
@@ -206,8 +205,7 @@ void AnchorsPanel::delete_selected() {
   if (frames.empty()) return;
   const QString text = frames.size() == 1 ? tr("Delete anchor of frame %1").arg(frames.front())
                                           : tr("Delete %1 anchors").arg(frames.size());
-  document_.undo_stack()->push(
-      new SetAnchorsCommand(document_, text, anchors_without(anchors, frames), PathCorrection::kNone));
+  AnchorEditor::of(document_).request(text, anchors_without(anchors, frames), PathCorrection::kNone);
 }
 
 bool AnchorsPanel::eventFilter(QObject* watched, QEvent* event) {

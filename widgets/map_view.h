@@ -6,9 +6,10 @@
 // Drift anchors: Ctrl + left drag from any frame of the path puts that frame where it really was (Shift held
 // at the same time snaps to the nearest plan corner within a few pixels); a plain left drag on an anchor
 // marker moves it; Esc cancels a drag. While dragging, the whole path is previewed bent by the anchors (the
-// fast warp, about a millisecond for 30 000 frames); the release is one undo step that places the anchor and
-// refines the path with all anchors (widgets/anchor_commands.h). Anchors are magenta squares, each with a
-// thin line to where its frame is on the path (the residual).
+// fast warp, about a millisecond for 30 000 frames); the release asks the document's AnchorEditor
+// (widgets/anchor_editor.h) to refine the path with all anchors on a worker, the preview staying drawn
+// until the result lands as one undo step (widgets/anchor_commands.h). Anchors are magenta squares, each
+// with a thin line to where its frame is on the path (the residual).
 // Placement ghosts: other placements registration found for a piece of the path (issue 19), drawn as thin
 // violet lines with their rank and score; a click on one asks for it (placement_clicked).
 // Point picking (Process > Place still on plan): after start_point_pick the next plain click anywhere on
@@ -154,10 +155,12 @@ class MapView : public QVTKOpenGLNativeWidget {
     bool moved = false;
     Eigen::Vector2d target = Eigen::Vector2d::Zero();
     bool snapped = false;
-    bool valid = false;        // the preview could be computed
-    Anchors anchors;           // the document's anchors with the dragged one moved
-    CameraPath preview;        // the path bent by them
-    bool ghost_drawn = false;  // the path before the drag is drawn (once per drag)
+    bool valid = false;              // the preview could be computed
+    Anchors anchors;                 // the document's anchors with the dragged one moved
+    CameraPath preview;              // the path bent by them
+    bool ghost_drawn = false;        // the path before the drag is drawn (once per drag)
+    QPoint previewed_pixel{-1, -1};  // where the preview was last computed, and with which snap
+    bool previewed_snap = false;
   };
 
   ProjectDocument& document_;

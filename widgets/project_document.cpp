@@ -9,6 +9,7 @@
 #include "model/error.h"
 #include "model/path_points.h"
 #include "model/project_io.h"
+#include "processing/visibility/shared_visibility_index.h"
 
 namespace plenopath::widgets {
 
@@ -25,6 +26,8 @@ void ProjectDocument::reset(Project project, const QString& file_name) {
   undo_stack_->clear();
   load_warning_.clear();
   project_ = std::move(project);
+  ++plan_revision_;
+  visibility_index_.reset();
   file_name_ = file_name.isEmpty() ? QString() : QFileInfo(file_name).absoluteFilePath();
   current_position_ = 0;
   look_azimuth_ = 0.0;
@@ -67,12 +70,22 @@ void ProjectDocument::save(const QString& file) {
 
 void ProjectDocument::modify(const std::function<void(Project&)>& edit, unsigned flags) {
   edit(project_);
+  if (flags & kPlanChanged) {
+    ++plan_revision_;
+    visibility_index_.reset();  // workers holding the old one keep it alive until they finish
+  }
   pending_flags_ |= flags;
   if (batch_depth_ > 0) return;
   const unsigned f = std::exchange(pending_flags_, 0u);
   // The path may have shrunk under the play head.
   if (current_position_ >= frame_count()) set_current_position(frame_count() - 1);
   emit changed(f);
+}
+
+std::shared_ptr<const SharedVisibilityIndex> ProjectDocument::visibility_index() {
+  if (!visibility_index_)
+    visibility_index_ = std::make_shared<const SharedVisibilityIndex>(project_.plan, index_builds_);
+  return visibility_index_;
 }
 
 void ProjectDocument::begin_batch() { ++batch_depth_; }

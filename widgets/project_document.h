@@ -4,11 +4,17 @@
 // modify(); views listen to `changed(flags)`, which is emitted once per batch of model changes.
 #include <QObject>
 #include <QString>
+#include <atomic>
 #include <functional>
+#include <memory>
 
 #include "model/project.h"
 
 class QUndoStack;
+
+namespace plenopath {
+class SharedVisibilityIndex;
+}
 
 namespace plenopath::widgets {
 
@@ -56,6 +62,17 @@ class ProjectDocument : public QObject {
   void begin_batch();
   void end_batch();
 
+  // ---- the plan's visibility index, one per plan revision, shared by everything that needs it (the map's
+  // envelopes, the timeline's profile, the cells that follow an anchor edit).
+  // Counts the plan's changes (kPlanChanged, a new document).
+  unsigned plan_revision() const { return plan_revision_; }
+  // The index of the present plan: the same object until the plan changes, built by the first get()
+  // (processing/visibility/shared_visibility_index.h). Call this on the GUI thread and hand the pointer
+  // to the worker, which calls get(): it never touches the document.
+  std::shared_ptr<const SharedVisibilityIndex> visibility_index();
+  // How many visibility indexes of the document's plans were built (tests).
+  int visibility_index_builds() const { return index_builds_->load(); }
+
   // ---- frames: a "position" is an index into path.frames (or into the capture when there is no path).
   int frame_count() const;
   // Capture index of the frame at `position` (path.frames[position].index), or position itself.
@@ -85,6 +102,9 @@ class ProjectDocument : public QObject {
   QString file_name_;
   QString load_warning_;
   QUndoStack* undo_stack_;
+  unsigned plan_revision_ = 0;
+  std::shared_ptr<const SharedVisibilityIndex> visibility_index_;  // of plan_revision_, or null
+  std::shared_ptr<std::atomic<int>> index_builds_ = std::make_shared<std::atomic<int>>(0);
   int batch_depth_ = 0;
   unsigned pending_flags_ = 0;
   int current_position_ = 0;

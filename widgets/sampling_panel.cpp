@@ -2,27 +2,22 @@
 
 #include <QComboBox>
 #include <QCoreApplication>
-#include <QElapsedTimer>
 #include <QFormLayout>
 #include <QLabel>
 #include <QSlider>
-#include <QThread>
 #include <QTimer>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <optional>
-#include <thread>
 
 #include "model/error.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_session.h"
 #include "processing/sampling/uniform_sampling.h"
 #include "widgets/clean_plate_box.h"
+#include "widgets/coalescing_runner.h"
 #include "widgets/document_commands.h"
 #include "widgets/project_document.h"
 
@@ -42,43 +37,15 @@ struct SamplingPanel::Job {
   SamplingOutcome outcome;  // filled by the worker
 };
 
-// The worker thread and what it shares with the GUI. One run at a time; the newest request waits in
-// `pending` (replacing an older one) and the running one is asked to stop.
+// What the worker keeps between runs. The runner (widgets/coalescing_runner.h) runs one job at a time, the
+// newest request replacing one still waiting and stopping the running one; the session is touched only by
+// the running job.
 struct SamplingPanel::Worker {
-  SamplingSession session;  // touched only by the running thread
-  std::thread thread;
-  std::atomic<bool> cancel{false};
-  std::atomic<int> permille{0};
-  std::mutex stage_mutex;
-  std::string stage;
-  bool running = false;
-  std::optional<Job> pending;
+  SamplingSession session;
+  bool newest_is_sample = false;  // the newest request given to the runner resamples (else it measures)
   // The loss last measured, and for which keyframes.
   std::optional<SamplingOutcome> measured;
 };
-
-namespace {
-// The running job's Progress: reports land in the worker's permille and stage, `cancel` stops it.
-class WorkerProgress final : public Progress {
- public:
-  WorkerProgress(std::atomic<int>& permille, std::mutex& stage_mutex, std::string& stage,
-                 const std::atomic<bool>& cancel)
-      : permille_(permille), stage_mutex_(stage_mutex), stage_(stage), cancel_(cancel) {}
-  void report(double fraction, const std::string& stage) override {
-    permille_ = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 1000);
-    if (stage.empty()) return;
-    std::lock_guard<std::mutex> lock(stage_mutex_);
-    stage_ = stage;
-  }
-  bool is_cancelled() const override { return cancel_; }
-
- private:
-  std::atomic<int>& permille_;
-  std::mutex& stage_mutex_;
-  std::string& stage_;
-  const std::atomic<bool>& cancel_;
-};
-}  // namespace
 
 double SamplingPanel::ratio_of_slider(int value) {
   return kMinRatio * std::pow(kMaxRatio / kMinRatio, value / static_cast<double>(kSliderSteps));
@@ -101,7 +68,8 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
       boost_label_(new QLabel(this)),
       statistics_(new QLabel(this)),
       progress_timer_(new QTimer(this)),
-      worker_(std::make_unique<Worker>()) {
+      worker_(std::make_unique<Worker>()),
+      runner_(std::make_unique<CoalescingRunner>()) {
   // Item data: the method's name (model/enums.h), and ":cells" for the visibility cell rule.
   method_->addItem(tr("Uniform by arc length"), QString(to_string(SamplingMethod::kUniform)));
   method_->addItem(tr("Visibility: least expected loss"), QString(to_string(SamplingMethod::kVisibility)));
@@ -120,6 +88,13 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
   statistics_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   progress_timer_->setInterval(150);
   connect(progress_timer_, &QTimer::timeout, this, [this] { update_statistics(); });
+  connect(runner_.get(), &CoalescingRunner::failed, this,
+          [this](const QString& error) { message_ = tr("Cannot sample: %1").arg(error); });
+  connect(runner_.get(), &CoalescingRunner::job_finished, this, [this] {
+    if (!runner_->busy()) progress_timer_->stop();
+    update_statistics();
+    emit worker_finished();
+  });
 
   auto* form = new QFormLayout;
   form->addRow(tr("Method"), method_);
@@ -163,23 +138,14 @@ SamplingPanel::SamplingPanel(ProjectDocument& document, QWidget* parent)
 }
 
 SamplingPanel::~SamplingPanel() {
-  worker_->cancel = true;
-  worker_->pending.reset();
-  if (worker_->thread.joinable()) worker_->thread.join();
+  runner_.reset();  // cancels and waits for the running job before the session goes
 }
 
 QString SamplingPanel::statistics_text() const { return statistics_->text(); }
 
-bool SamplingPanel::busy() const { return worker_->running; }
+bool SamplingPanel::busy() const { return runner_->busy(); }
 
-void SamplingPanel::wait() {
-  QElapsedTimer timer;
-  timer.start();
-  while (busy() && timer.elapsed() < 600000) {
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(2);
-  }
-}
+void SamplingPanel::wait() { runner_->wait(); }
 
 SamplingParameters SamplingPanel::parameters() const {
   SamplingParameters p = document_.project().keyframes.parameters;
@@ -244,7 +210,8 @@ void SamplingPanel::resample(int merge_session) {
       update_statistics();
       return;
     }
-    worker_->pending.reset();  // a waiting visibility/depth run would overwrite this newer choice
+    if (worker_->newest_is_sample) runner_->cancel();  // a visibility/depth run would overwrite this choice
+    worker_->newest_is_sample = false;
     if (!(keyframes == p.keyframes))
       document_.undo_stack()->push(new SetKeyframesCommand(document_, std::move(keyframes), merge_session));
     return;
@@ -272,17 +239,8 @@ void SamplingPanel::request_loss() {
   const Project& p = document_.project();
   if (p.path.empty() || p.keyframes.empty() || p.plan.occluder_segments().empty()) return;
   if (worker_->measured && worker_->measured->keyframes == p.keyframes) return;
-  if (worker_->running || worker_->pending) {
-    if (!worker_->pending || !worker_->pending->request.sample) {
-      // Replace a waiting loss request by this one; a waiting resample measures its own result.
-      Job job;
-      job.snapshot = p;
-      job.request.sample = false;
-      job.request.keyframes = p.keyframes;
-      worker_->pending = std::move(job);
-    }
-    return;
-  }
+  // A resample still waiting to start measures its own result.
+  if (worker_->newest_is_sample && runner_->waiting()) return;
   Job job;
   job.snapshot = p;
   job.request.sample = false;
@@ -290,83 +248,38 @@ void SamplingPanel::request_loss() {
   start(std::move(job));
 }
 
-void SamplingPanel::start(Job job) {
-  if (worker_->running) {
-    // The running job is stale: stop it; this one runs when it returns.
-    if (job.request.sample) worker_->cancel = true;
-    worker_->pending = std::move(job);
-    return;
-  }
-  launch(std::move(job));
-}
-
-void SamplingPanel::launch(Job job_in) {
-  Worker* w = worker_.get();
-  if (w->thread.joinable()) w->thread.join();  // the previous run has posted its result already
-  w->running = true;
-  w->cancel = false;
-  w->permille = 0;
+void SamplingPanel::start(Job job_in) {
+  worker_->newest_is_sample = job_in.request.sample;
   auto job = std::make_shared<Job>(std::move(job_in));
+  Worker* w = worker_.get();
+  runner_->request([this, w, job](Progress& progress) -> CoalescingRunner::Delivery {
+    job->outcome = w->session.run(job->snapshot, job->request, progress);
+    return [this, job] { on_done(*job); };
+  });
   progress_timer_->start();
   update_statistics();
-  w->thread = std::thread([this, w, job] {
-    bool ok = false, cancelled = false;
-    QString error;
-    try {
-      WorkerProgress progress(w->permille, w->stage_mutex, w->stage, w->cancel);
-      job->outcome = w->session.run(job->snapshot, job->request, progress);
-      ok = true;
-    } catch (const Cancelled&) {
-      cancelled = true;
-    } catch (const std::exception& e) {
-      error = QString::fromStdString(e.what());
-    } catch (...) {
-      error = tr("unexpected error");
-    }
-    // Back on the GUI thread (dropped if the panel is gone: the destructor joins this thread first).
-    QMetaObject::invokeMethod(
-        this, [this, job, ok, cancelled, error] { on_done(job, ok, cancelled, error); },
-        Qt::QueuedConnection);
-  });
 }
 
-void SamplingPanel::on_done(std::shared_ptr<Job> job, bool ok, bool cancelled, const QString& error) {
+// The newest job's result, on the GUI thread.
+void SamplingPanel::on_done(const Job& job) {
   Worker* w = worker_.get();
-  w->running = false;
-  if (w->thread.joinable()) w->thread.join();
-  progress_timer_->stop();
-  if (w->pending) {
-    Job next = std::move(*w->pending);
-    w->pending.reset();
-    launch(std::move(next));
-    emit worker_finished();
-    return;
-  }
   const Project& p = document_.project();
-  if (!ok) {
-    if (!cancelled) message_ = tr("Cannot sample: %1").arg(error);
-    update_statistics();
-    emit worker_finished();
-    return;
-  }
-  if (job->request.sample) {
+  if (job.request.sample) {
+    w->newest_is_sample = false;
     // The project may have changed under the worker: a result for another path is resampled.
-    if (!(job->snapshot.path == p.path) || !(job->snapshot.visibility == p.visibility) ||
-        !(job->snapshot.plan == p.plan)) {
-      resample(job->merge_session);
-      emit worker_finished();
+    if (!(job.snapshot.path == p.path) || !(job.snapshot.visibility == p.visibility) ||
+        !(job.snapshot.plan == p.plan)) {
+      resample(job.merge_session);
       return;
     }
-    w->measured = job->outcome;
-    if (!(job->outcome.keyframes == p.keyframes))
+    w->measured = job.outcome;
+    if (!(job.outcome.keyframes == p.keyframes))
       document_.undo_stack()->push(
-          new SetKeyframesCommand(document_, job->outcome.keyframes, job->merge_session));
+          new SetKeyframesCommand(document_, job.outcome.keyframes, job.merge_session));
   } else {
-    w->measured = job->outcome;
+    w->measured = job.outcome;
     request_loss();  // the keyframes moved on meanwhile
   }
-  update_statistics();
-  emit worker_finished();
 }
 
 void SamplingPanel::update_statistics() {
@@ -390,14 +303,10 @@ void SamplingPanel::update_statistics() {
                 .arg(w.measured->loss.geometric.mean, 0, 'f', 3)
                 .arg(w.measured->loss.geometric.p95, 0, 'f', 3);
   text += tr("<br>%1 visibility cells").arg(p.visibility.cells.size());
-  if (w.running) {
-    std::string stage;
-    {
-      std::lock_guard<std::mutex> lock(worker_->stage_mutex);
-      stage = worker_->stage;
-    }
-    text += tr("<br><i>working: %1 %2 %</i>").arg(QString::fromStdString(stage)).arg(w.permille / 10);
-  }
+  if (runner_->busy())
+    text += tr("<br><i>working: %1 %2 %</i>")
+                .arg(QString::fromStdString(runner_->stage()))
+                .arg(static_cast<int>(runner_->fraction() * 100));
   statistics_->setText(text);
 }
 

@@ -3,8 +3,8 @@
 // budget, exponent and transition boost, with live statistics including the geometric loss. Moving a
 // control resamples and pushes one undoable SetKeyframesCommand; a slider drag merges into one undo step.
 // Uniform sampling runs at once; visibility and depth sampling and the loss measures run on a worker
-// (processing/sampling/sampling_session.h keeps envelopes and depth volumes between runs), the newest
-// request replacing one still waiting, so the panel never blocks the editor.
+// (processing/sampling/sampling_session.h keeps envelopes and depth volumes between runs) through a
+// CoalescingRunner (the newest request wins), so the panel never blocks the editor.
 #include <QString>
 #include <QWidget>
 #include <memory>
@@ -19,6 +19,7 @@ class QTimer;
 namespace plenopath::widgets {
 
 class CleanPlateBox;
+class CoalescingRunner;
 class ProjectDocument;
 
 class SamplingPanel : public QWidget {
@@ -61,8 +62,7 @@ class SamplingPanel : public QWidget {
   void on_control_changed(QSlider* slider);
   void request_loss();
   void start(Job job);
-  void launch(Job job);
-  void on_done(std::shared_ptr<Job> job, bool ok, bool cancelled, const QString& error);
+  void on_done(const Job& job);
 
   ProjectDocument& document_;
   QComboBox* method_;
@@ -81,6 +81,7 @@ class SamplingPanel : public QWidget {
   QString message_;       // why the last resample could not run ("" = none)
 
   std::unique_ptr<Worker> worker_;
+  std::unique_ptr<CoalescingRunner> runner_;  // newest request wins (widgets/coalescing_runner.h)
 };
 
 }  // namespace plenopath::widgets

@@ -1,7 +1,8 @@
 #pragma once
-// Keeps a visibility index of the current plan (built off the GUI thread whenever the plan changes) and
-// gives the map view the envelope of the current frame from it.
-#include <QFutureWatcher>
+// Gives the map view the envelope of the current frame from the visibility index of the current plan: the
+// document's shared index (widgets/project_document.h, one per plan revision), fetched (built when nobody
+// has yet) off the GUI thread whenever the plan changes; the newest plan wins
+// (widgets/coalescing_runner.h).
 #include <QObject>
 #include <memory>
 
@@ -9,6 +10,7 @@ namespace plenopath {
 class VisibilityIndex;
 }
 namespace plenopath::widgets {
+class CoalescingRunner;
 class MapView;
 class ProjectDocument;
 }  // namespace plenopath::widgets
@@ -23,6 +25,7 @@ class EnvelopeService : public QObject {
   bool ready() const { return index_ != nullptr; }
   // The index of the current plan, or null while it is being built (or the plan has no occluders).
   std::shared_ptr<const VisibilityIndex> index() const { return index_; }
+  bool busy() const;
 
  signals:
   void index_ready();
@@ -32,10 +35,7 @@ class EnvelopeService : public QObject {
   widgets::ProjectDocument& document_;
   widgets::MapView& map_;
   std::shared_ptr<const VisibilityIndex> index_;
-  QFutureWatcher<std::shared_ptr<const VisibilityIndex>> watcher_;
-  unsigned generation_ = 0;
-  unsigned building_generation_ = 0;
-  bool stale_ = false;
+  widgets::CoalescingRunner* runner_;
 };
 
 }  // namespace plenopath::studio

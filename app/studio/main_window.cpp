@@ -118,7 +118,7 @@ MainWindow::MainWindow(QWidget* parent)
 
   create_docks();
   create_actions();
-  profiles_ = new ProfileService(*document_, *envelopes_, *timeline_->strip(), this);
+  profiles_ = new ProfileService(*document_, *timeline_->strip(), this);
 
   // Status bar: the running task, its progress and Cancel.
   task_label_ = new QLabel(this);

@@ -1,22 +1,19 @@
 #pragma once
-// The per-frame curves of the timeline: the envelope area at each path position (from the visibility index
-// of the current plan) and the depth volume of each frame's depth map (processing/sampling/depth_volume.h).
-// Computed off the GUI thread whenever the path, the plan's index or the capture changes; a newer request
-// makes an older run stop early and its result is dropped.
-#include <QFutureWatcher>
+// The per-frame curves of the timeline: the envelope area at each path position (from the document's
+// shared visibility index of the current plan) and the depth volume of each frame's depth map
+// (processing/sampling/depth_volume.h). Computed off the GUI thread whenever the path, the plan or the
+// capture changes; the newest request wins: an older run stops early and its result is dropped
+// (widgets/coalescing_runner.h).
 #include <QObject>
 #include <QVector>
-#include <atomic>
-#include <memory>
 
 namespace plenopath::widgets {
+class CoalescingRunner;
 class ProjectDocument;
 class TimelineStrip;
 }  // namespace plenopath::widgets
 
 namespace plenopath::studio {
-
-class EnvelopeService;
 
 struct Profiles {
   QVector<double> envelope_area;  // m^2 per path position (empty when unknown)
@@ -26,11 +23,11 @@ struct Profiles {
 class ProfileService : public QObject {
   Q_OBJECT
  public:
-  ProfileService(widgets::ProjectDocument& document, EnvelopeService& envelopes,
-                 widgets::TimelineStrip& strip, QObject* parent = nullptr);
+  ProfileService(widgets::ProjectDocument& document, widgets::TimelineStrip& strip,
+                 QObject* parent = nullptr);
   ~ProfileService() override;
   const Profiles& profiles() const { return profiles_; }
-  bool busy() const { return watcher_.isRunning() || again_; }
+  bool busy() const;
 
  signals:
   void updated();
@@ -38,12 +35,9 @@ class ProfileService : public QObject {
  private:
   void recompute();
   widgets::ProjectDocument& document_;
-  EnvelopeService& envelopes_;
   widgets::TimelineStrip& strip_;
   Profiles profiles_;
-  QFutureWatcher<Profiles> watcher_;
-  std::shared_ptr<std::atomic<bool>> stop_;
-  bool again_ = false;
+  widgets::CoalescingRunner* runner_;
 };
 
 }  // namespace plenopath::studio

