@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "model/error.h"
+#include "processing/pipeline/sample_step.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_session.h"
 #include "processing/sampling/uniform_sampling.h"
@@ -314,7 +315,9 @@ void SamplingPanel::launch(Job job_in) {
     QString error;
     try {
       WorkerProgress progress(w->permille, w->stage_mutex, w->stage, w->cancel);
-      job->outcome = w->session.run(job->snapshot, job->request, progress);
+      pipeline::SampleStepOptions options;
+      options.request = job->request;
+      job->outcome = pipeline::run_sample(job->snapshot, options, progress, &w->session).outcome;
       ok = true;
     } catch (const Cancelled&) {
       cancelled = true;
