@@ -19,6 +19,10 @@ void apply_placement(const PlacementChoices& choices, const std::vector<int>& ch
                      std::vector<PathPoint>* points, PlanRefinementReport* report, Progress& progress) {
   std::vector<PathPoint> moved = choices.unplaced_points;
   CameraPath placed = apply_registration(choices.unplaced_path, choices.result, choice, &moved);
+  if (choices.unplace_failed)
+    for (const PieceRegistration& p : choices.result.pieces)
+      if (!p.ok && p.piece >= 0 && p.piece < static_cast<int>(placed.pieces.size()))
+        placed.pieces[static_cast<std::size_t>(p.piece)].placed = false;
   if (choices.refine_on_walls && !choices.plan.occluder_segments().empty())
     placed = refine_on_plan(placed, &moved, choices.plan, choices.refinement_options, report, progress);
   *path = std::move(placed);
@@ -57,6 +61,7 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   SubProgress search(progress, 0.0, 0.8, "registration");
   choices.result = register_on_plan(project.path, project.path_points, project.plan, registration, search);
   const bool stills = project.capture.stills && project.capture.kind == CaptureKind::kImageFolder;
+  choices.unplace_failed = stills;
   if (stills) {
     // Repeated rooms fit a group's points alike: what the stills see picks among the placements.
     const auto source = FrameSource::open_capture(project.capture);
@@ -100,10 +105,6 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   CameraPath placed;
   SubProgress refining(progress, 0.85, 0.97, "refinement on the walls");
   apply_placement(choices, choices.choice, &placed, &project.path_points, &choices.refinement, refining);
-  if (stills)  // a group of stills left where the stills pipeline put it is not on the plan: unplaced
-    for (const PieceRegistration& p : choices.result.pieces)
-      if (!p.ok && p.piece >= 0 && p.piece < static_cast<int>(placed.pieces.size()))
-        placed.pieces[static_cast<std::size_t>(p.piece)].placed = false;
   SubProgress cells_progress(progress, 0.97, 1.0, "visibility cells along the placed path");
   if (std::optional<VisibilityCells> cells = cells_following_path(project, placed, cells_progress))
     project.visibility = std::move(*cells);

@@ -26,6 +26,9 @@ struct PlacementChoices {
   FloorPlan plan;           // the plan registration ran on (the refinement's walls)
   PlanRefinementOptions refinement_options;
   bool refine_on_walls = true;
+  // Stills: a piece registration cannot place is left where the stills pipeline put it, which is not on
+  // the plan: apply_placement marks it unplaced.
+  bool unplace_failed = false;
   PlanRefinementReport refinement;  // of the choice applied last by run_place_on_plan
   bool empty() const { return result.pieces.empty(); }
 };
