@@ -27,7 +27,7 @@ Anchors anchors_from_json(const JsonReader& r) {
     if (!seen.insert(anchor.frame).second)
       a.at("index").fail("two anchors on frame " + std::to_string(anchor.frame));
     anchor.position = {a.number("x"), a.number("y")};
-    if (auto h = a.find("heading_deg")) anchor.heading = radians(h->number());
+    if (auto h = a.find("heading_deg")) anchor.heading = radians_of_written(h->number());
     anchors.push_back(anchor);
   }
   return anchors;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -96,5 +97,18 @@ double wrap_angle(double radians) {
 }
 double degrees(double radians) { return radians * 180.0 / M_PI; }
 double radians(double degrees) { return degrees * M_PI / 180.0; }
+
+double radians_of_written(double deg) {
+  const double r = radians(deg);
+  if (!std::isfinite(r) || degrees(r) == deg) return r;
+  double down = r, up = r;
+  for (int i = 0; i < 4; ++i) {
+    up = std::nextafter(up, std::numeric_limits<double>::infinity());
+    if (degrees(up) == deg) return up;
+    down = std::nextafter(down, -std::numeric_limits<double>::infinity());
+    if (degrees(down) == deg) return down;
+  }
+  return r;  // not written by degrees(): the nearest
+}
 
 }  // namespace plenopath

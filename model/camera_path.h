@@ -82,5 +82,10 @@ void renumber_frames(CameraPath* path, const std::vector<int>& positions);
 double wrap_angle(double radians);
 double degrees(double radians);
 double radians(double degrees);
+// An angle read from a file that degrees() wrote: the radians whose degrees() gives back exactly `degrees`
+// (within a few ulps of radians(degrees)), so that a project or path file read and written again keeps its
+// digits: deg(rad(deg(h))) can differ from deg(h) in the last bit, and the command line, which reads back
+// what each step wrote, would then write other bytes than the studio, which keeps the angle in memory.
+double radians_of_written(double degrees);
 
 }  // namespace plenopath

@@ -46,6 +46,20 @@ double Capture::frame_time_s(int k) const {
   return (first_frame + double(k) * std::max(1, stride)) / rate;
 }
 
+int Capture::frame_index_of_kept(int k) const {
+  if (kind != CaptureKind::kVideo) return k;
+  return first_frame + k * std::max(1, stride);
+}
+
+int Capture::kept_of_frame_index(int index) const {
+  if (index < 0) return -1;
+  if (kind != CaptureKind::kVideo) return frame_count > 0 && index >= frame_count ? -1 : index;
+  const int step = std::max(1, stride);
+  if (index < first_frame || (index - first_frame) % step != 0) return -1;
+  const int k = (index - first_frame) / step;
+  return frame_count > 0 && k >= frame_count ? -1 : k;
+}
+
 double Capture::time_at_index_s(int index) const {
   const double rate = frame_rate > 0 ? frame_rate : 30.0;
   if (kind != CaptureKind::kVideo) return frame_time_s(index);

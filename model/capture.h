@@ -50,6 +50,13 @@ struct Capture {
   // in the capture): a video frame between kept ones, or outside them, is placed at frame_rate from the
   // nearest kept frame.
   double time_at_index_s(int index) const;
+  // The one mapping between kept frames (0..frame_count-1, what FrameSource::read takes) and capture
+  // indices (PathFrame::index, anchors, keyframes, hotspots): a video's kept frame k is its frame number
+  // first_frame + k * stride; an image folder's (and a generated capture's) kept frame k is index k.
+  int frame_index_of_kept(int k) const;
+  // The inverse: the kept frame at capture index `index`, or -1 when no kept frame has it (a video frame
+  // between strides or before first_frame, or an index beyond frame_count when frame_count is known).
+  int kept_of_frame_index(int index) const;
 };
 bool operator==(const Capture& l, const Capture& r);
 

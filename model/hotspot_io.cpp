@@ -33,7 +33,8 @@ Hotspot hotspot_from_json(const JsonReader& j) {
     for (std::size_t k = 0; k < corners->size(); ++k) {
       const JsonReader c = corners->at(k);
       if (c.size() != 2) c.fail("expected [azimuth, elevation] in degrees");
-      h.image_corners.emplace_back(radians(c.at(0).number()), radians(c.at(1).number()));
+      h.image_corners.emplace_back(radians_of_written(c.at(0).number()),
+                                   radians_of_written(c.at(1).number()));
     }
   if (auto corners = j.find("world_corners"))
     for (std::size_t k = 0; k < corners->size(); ++k) {

@@ -66,7 +66,7 @@ CameraPath path_from_json(const JsonReader& reader) {
     frame.file = f.string_or("file", "");
     frame.x = f.number("x") * scale;
     frame.y = f.number("y") * scale;
-    frame.heading = radians(f.number("heading_deg"));
+    frame.heading = radians_of_written(f.number("heading_deg"));
     frame.confidence = f.number_or("confidence", 1.0);
     if (auto flags = f.find("flags")) {
       const int v = flags->integer();

@@ -325,7 +325,7 @@ GeoAnchor geo_from_json(const JsonReader& r) {
   g.latitude_deg = r.number_or("latitude_deg", 0.0);
   g.longitude_deg = r.number_or("longitude_deg", 0.0);
   g.altitude_m = r.number_or("altitude_m", 0.0);
-  g.plan_rotation = radians(r.number_or("plan_rotation_deg", 0.0));
+  g.plan_rotation = radians_of_written(r.number_or("plan_rotation_deg", 0.0));
   g.scale = r.number_or("scale", 1.0);
   if (g.scale <= 0) r.at("scale").fail("must be > 0");
   if (auto o = r.find("plan_origin")) g.plan_origin = read_vec2(*o);

@@ -48,10 +48,7 @@ void FrameProvider::reopen() {
 }
 
 int FrameProvider::source_index_of(int position) const {
-  const int index = document_.frame_index_at(position);
-  const Capture& capture = document_.project().capture;
-  if (capture.kind == CaptureKind::kVideo) return (index - capture.first_frame) / std::max(1, capture.stride);
-  return index;
+  return document_.project().capture.kept_of_frame_index(document_.frame_index_at(position));
 }
 
 QImage FrameProvider::cached(int position) const {

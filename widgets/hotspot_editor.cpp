@@ -245,9 +245,8 @@ void HotspotEditor::create_from_pending() {
         // Depth only when the plan does not settle it: reading a depth map costs a decode.
         try {
           const auto source = FrameSource::open_capture(p.capture);
-          const int index = p.capture.kind == CaptureKind::kVideo
-                                ? (h.frame - p.capture.first_frame) / std::max(1, p.capture.stride)
-                                : h.frame;
+          const int index = p.capture.kept_of_frame_index(h.frame);
+          if (index < 0) throw Error("frame " + std::to_string(h.frame) + " is not a kept frame");
           placed = place_hotspot_quad(pending_, pose, p.plan, source->read_depth(index), options);
         } catch (const Error& e) {
           placed.message += " (depth map not read: " + std::string(e.what()) + ")";

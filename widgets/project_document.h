@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "model/project.h"
+#include "processing/pipeline/project_parts.h"
 
 class QUndoStack;
 
@@ -18,18 +19,18 @@ class SharedVisibilityIndex;
 
 namespace plenopath::widgets {
 
-// What part of the project changed, so views redraw only what they must.
-enum ChangeFlag : unsigned {
-  kPlanChanged = 1u << 0,
-  kCaptureChanged = 1u << 1,
-  kPathChanged = 1u << 2,
-  kVisibilityChanged = 1u << 3,
-  kKeyframesChanged = 1u << 4,
-  kHotspotsChanged = 1u << 5,
-  kSettingsChanged = 1u << 6,  // geo anchor, tour settings
-  kAnchorsChanged = 1u << 7,   // the author's drift anchors
-  kEverythingChanged = 0xffu,
-};
+// What part of the project changed, so views redraw only what they must: the pipeline's ProjectPart
+// (processing/pipeline/project_parts.h), the one definition.
+using ChangeFlag = ProjectPart;
+using plenopath::kAnchorsChanged;
+using plenopath::kCaptureChanged;
+using plenopath::kEverythingChanged;
+using plenopath::kHotspotsChanged;
+using plenopath::kKeyframesChanged;
+using plenopath::kPathChanged;
+using plenopath::kPlanChanged;
+using plenopath::kSettingsChanged;
+using plenopath::kVisibilityChanged;
 
 class ProjectDocument : public QObject {
   Q_OBJECT

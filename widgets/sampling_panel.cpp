@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "model/error.h"
+#include "processing/pipeline/sample_step.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_session.h"
 #include "processing/sampling/uniform_sampling.h"
@@ -253,7 +254,9 @@ void SamplingPanel::start(Job job_in) {
   auto job = std::make_shared<Job>(std::move(job_in));
   Worker* w = worker_.get();
   runner_->request([this, w, job](Progress& progress) -> CoalescingRunner::Delivery {
-    job->outcome = w->session.run(job->snapshot, job->request, progress);
+    pipeline::SampleStepOptions options;
+    options.request = job->request;
+    job->outcome = pipeline::run_sample(job->snapshot, options, progress, &w->session).outcome;
     return [this, job] { on_done(*job); };
   });
   progress_timer_->start();

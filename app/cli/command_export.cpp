@@ -14,6 +14,7 @@
 #include "model/error.h"
 #include "model/project_io.h"
 #include "processing/export/tour_export.h"
+#include "processing/pipeline/export_step.h"
 
 namespace plenopath::cli {
 
@@ -105,8 +106,12 @@ Command add_export_command(CLI::App& parent) {
               cleaning.nadir.image = read_nadir_image(o->nadir);
             }
             ConsoleProgress progress("export");
-            const TourExportReport report = export_tour(project, options, progress);
+            pipeline::ExportStepOptions step;
+            step.tour = std::move(options);
+            const pipeline::ExportStepResult result =
+                pipeline::run_export(std::move(project), step, progress);
             progress.finish();
+            const TourExportReport& report = result.report;
             for (const std::string& w : report.warnings) std::cerr << "export: warning: " << w << "\n";
             if (o->json) {
               std::cout << nlohmann::json{{"output", report.output},

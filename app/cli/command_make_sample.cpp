@@ -12,6 +12,8 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/project_io.h"
+#include "processing/pipeline/sample_step.h"
+#include "processing/pipeline/visibility_step.h"
 #include "processing/plan/dxf_export.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/sampling/sampling_session.h"
@@ -61,10 +63,10 @@ int run(const Options& o) {
   project.tour.title = "Office sample";
   // Ready to export as it opens: the walk's visibility cells, and keyframes by the studio's default method.
   if (path.size() >= 2) {
-    project.visibility = VisibilityIndex(project.plan).cells_along_path(path);
-    SamplingRequest request;
-    request.geometric_loss = false;
-    project.keyframes = SamplingSession().run(project, request).keyframes;
+    project = pipeline::run_visibility(std::move(project), {}).project;
+    pipeline::SampleStepOptions sampling;
+    sampling.request.geometric_loss = false;
+    project = pipeline::run_sample(std::move(project), sampling).project;
   }
   save_project(project, (dir / "office.plenopath").string());
   fs::remove(dir / "office.plenopath.bak");

@@ -12,6 +12,7 @@
 #include "model/error.h"
 #include "model/project_io.h"
 #include "processing/anchors/anchor_refinement.h"
+#include "processing/pipeline/refine_step.h"
 
 namespace plenopath::cli {
 
@@ -42,16 +43,14 @@ Command add_refine_command(CLI::App& parent) {
             if (project.anchors.empty() && gps.size() < 2)
               throw plenopath::Error(o->project +
                                      ": no anchors (place some in the studio or pass --anchors FILE)");
-            AnchorRefinementReport report;
-            if (o->preview) {
-              project.path = preview_path_with_anchors(project.path, project.anchors);
-            } else {
-              ConsoleProgress progress("refine");
-              project.path =
-                  refine_path_with_anchors(project.path, project.anchors, {}, &report, progress, gps);
-              progress.finish();
-            }
-            project.path.scale_source = project.anchors.empty() ? "gps" : "anchors";
+            // The pipeline's step, as the studio's Process > Refine with anchors (the cells follow the path).
+            pipeline::RefineStepOptions options;
+            options.preview = o->preview;
+            ConsoleProgress progress("refine", o->preview);
+            pipeline::RefineStepResult result = pipeline::run_refine(std::move(project), options, progress);
+            progress.finish();
+            project = std::move(result.project);
+            const AnchorRefinementReport& report = result.report;
             const std::string out = o->out.empty() ? o->project : o->out;
             save_project(project, out);
             nlohmann::json residuals = nlohmann::json::array();

@@ -13,6 +13,7 @@
 #include "model/error.h"
 #include "model/path_points.h"
 #include "model/project_io.h"
+#include "processing/pipeline/place_step.h"
 #include "processing/registration/registration.h"
 
 namespace plenopath::cli {
@@ -52,40 +53,39 @@ Command add_register_command(CLI::App& parent) {
             std::vector<PathPoint> points = read_path_points_file(points_file);
             if (project.path.empty()) throw Error(o->project + ": the project has no path to register");
             if (project.plan.empty()) throw Error(o->project + ": the project has no plan to register on");
-            RegistrationOptions options;
-            options.camera_height_m =
+            const double camera_height =
                 o->camera_height > 0 ? o->camera_height : project.capture.camera_height_m;
-            if (!(options.camera_height_m > 0))
+            if (!(camera_height > 0))
               throw Error(o->project + ": the capture's camera height is unknown: give --camera-height");
-            ConsoleProgress progress("register", o->quiet);
-            const RegistrationResult result =
-                register_on_plan(project.path, points, project.plan, options, progress);
-            progress.finish();
-            std::vector<int> choice;
-            for (int k : o->pick) choice.push_back(k - 1);
-            if (!choice.empty() && static_cast<int>(choice.size()) != project.path.piece_count())
-              throw Error("--pick: " + std::to_string(choice.size()) + " numbers for " +
+            project.path_points = std::move(points);
+            // The pipeline's step, as the studio's Process > Place path on plan; nothing is written unless
+            // every piece fits (checked below, after the report).
+            pipeline::PlaceStepOptions options;
+            options.camera_height_m = camera_height;
+            options.refine_on_walls = !o->no_refine;
+            options.require = pipeline::PlaceStepOptions::Require::kNone;
+            for (int k : o->pick) options.pick.push_back(k - 1);
+            if (!options.pick.empty() && static_cast<int>(options.pick.size()) != project.path.piece_count())
+              throw Error("--pick: " + std::to_string(options.pick.size()) + " numbers for " +
                           std::to_string(project.path.piece_count()) + " piece(s)");
+            const std::size_t points_count = project.path_points.size();
+            ConsoleProgress progress("register", o->quiet);
+            pipeline::PlaceStepResult placed = pipeline::run_place_on_plan(project, options, progress);
+            progress.finish();
+            const RegistrationResult& result = placed.choices.result;
+            const PlanRefinementReport& refinement = placed.choices.refinement;
             nlohmann::json summary = registration_to_json(result);
             summary["project"] = o->project;
             summary["points"] = points_file;
-            summary["points_count"] = points.size();
+            summary["points_count"] = points_count;
+            if (!o->no_refine && result.all_ok())
+              summary["plan_refinement"] = plan_refinement_to_json(refinement);
             const std::string out = o->out.empty() ? o->project : o->out;
             bool written = false;
-            PlanRefinementReport refinement;
             if (result.all_ok()) {
-              project.path = apply_registration(project.path, result, choice, &points);
-              if (!o->no_refine) {
-                PlanRefinementOptions refine_options;
-                refine_options.registration = options;
-                ConsoleProgress refine_progress("register: refinement on the walls", o->quiet);
-                project.path = refine_on_plan(project.path, &points, project.plan, refine_options,
-                                              &refinement, refine_progress);
-                refine_progress.finish();
-                summary["plan_refinement"] = plan_refinement_to_json(refinement);
-              }
+              project = std::move(placed.project);
               save_project(project, out);
-              write_path_points_file(points, points_file_beside(out));
+              write_path_points_file(project.path_points, points_file_beside(out));
               written = true;
             }
             summary["out"] = written ? nlohmann::json(out) : nlohmann::json(nullptr);

@@ -17,6 +17,7 @@
 #include "model/path_io.h"
 #include "model/project_io.h"
 #include "processing/capture/frame_source.h"
+#include "processing/pipeline/sample_step.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/sampling/keyframe_sampler.h"
 #include "processing/sampling/sampling_loss.h"
@@ -60,22 +61,24 @@ int run(const Options& o, CLI::App* sub) {
   if (from_project) project = load_project(o.project);
   const std::string where = from_project ? o.project : o.path;
 
-  // The plan (optional for uniform and depth).
-  FloorPlan plan;
-  if (!o.plan.empty())
-    plan = import_dxf(o.plan, o.import);
-  else if (from_project)
-    plan = project.plan;
-  const CameraPath path = from_project ? project.path : read_path_file(o.path);
+  // What the step works on: the project (or a path file) with the plan and capture given here; a --save
+  // writes only the keyframes into the project as it was.
+  Project work = project;
+  // The plan (optional for uniform and depth); the cells of another plan are stale.
+  if (!o.plan.empty()) {
+    work.plan = import_dxf(o.plan, o.import);
+    work.visibility = {};
+  }
+  if (!from_project) work.path = read_path_file(o.path);
+  const CameraPath& path = work.path;
   if (path.empty()) throw Error(where + ": the camera path has no frames");
-  std::unique_ptr<VisibilityIndex> index;
-  if (!plan.occluder_segments().empty()) index = std::make_unique<VisibilityIndex>(plan);
-  if (o.parameters.method == SamplingMethod::kVisibility && !index)
+  if (o.parameters.method == SamplingMethod::kVisibility && work.plan.occluder_segments().empty())
     throw Error((o.plan.empty() ? where : o.plan) +
                 ": visibility sampling needs a floor plan with walls (give --plan PLAN.dxf)");
 
-  // The capture (optional): frames for the photometric loss, depth maps for depth sampling.
-  std::unique_ptr<FrameSource> source;
+  // The capture (optional): frames for the photometric loss, depth maps for depth sampling; the work reads
+  // it through the project's Capture, as the studio does.
+  int photometric_frames = o.photometric_frames;
   if (!o.capture.empty()) {
     namespace fs = std::filesystem;
     FrameSourceOptions options;
@@ -87,94 +90,35 @@ int run(const Options& o, CLI::App* sub) {
       if (options.depth_folder.empty() && fs::is_directory(fs::path(o.capture) / "depth"))
         options.depth_folder = (fs::path(o.capture) / "depth").string();
     }
-    source = FrameSource::open(frames, options);
-  } else if (from_project && !project.capture.empty()) {
+    const std::unique_ptr<FrameSource> source = FrameSource::open(frames, options);
+    if (o.parameters.method == SamplingMethod::kDepth && source->depth_match_count() == 0)
+      throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
+    work.capture = capture_from_frame_source(*source, work.capture);
+  } else if (from_project && !work.capture.empty()) {
     try {
-      source = FrameSource::open_capture(project.capture);
+      FrameSource::open_capture(work.capture);
     } catch (const Error& e) {
       if (o.parameters.method == SamplingMethod::kDepth) throw;
       std::cerr << "plenopath sample: warning: " << e.what() << " (no photometric loss)\n";
+      photometric_frames = 0;
     }
   }
-  auto check_frame = [&](int index) {
-    if (index < 0 || index >= source->frame_count())
-      throw Error(source->source() + ": the path's frame " + std::to_string(index) +
-                  " is not in the capture (" + std::to_string(source->frame_count()) + " frames)");
-  };
+  if (o.parameters.method == SamplingMethod::kDepth && work.capture.empty())
+    throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
+  if (work.capture.empty()) photometric_frames = 0;
 
+  // The pipeline's step, as the studio's sampling panel.
+  pipeline::SampleStepOptions options;
+  options.request.parameters = o.parameters;
+  options.request.pinned = o.pinned;
+  options.compute_missing_cells = true;  // a path file and a plan: the cells along the path first
+  options.photometric_frames = photometric_frames;
+  if (work.capture.stills) std::cerr << "sample: the capture is still panoramas: every still is a keyframe\n";
   ConsoleProgress progress("sample");
-  SamplingInputs inputs;
-  inputs.path = &path;
-  inputs.index = index.get();
-  VisibilityCells cells;
-  if (o.parameters.method == SamplingMethod::kVisibility && o.parameters.rule == VisibilityRule::cell_rule) {
-    SubProgress cells_progress(progress, 0.0, 0.3, "visibility cells");
-    cells = from_project && !project.visibility.empty() && o.plan.empty()
-                ? project.visibility
-                : index->cells_along_path(path, cells_progress);
-    inputs.cells = &cells;
-  }
-  std::vector<DepthVolume> volumes;
-  PathEnvelopes depth_envelopes;
-  if (o.parameters.method == SamplingMethod::kDepth) {
-    if (!source) throw Error(where + ": depth sampling needs the capture's depth maps (give --capture DIR)");
-    if (source->depth_match_count() == 0)
-      throw Error(source->source() + ": no depth maps found (give --depth DIR with 16-bit PNG or EXR depth)");
-    SubProgress volumes_progress(progress, 0.0, 0.3, "depth volumes");
-    volumes = depth_volumes_along_path(
-        path,
-        [&](int i) {
-          check_frame(i);
-          if (!source->has_depth(i))
-            throw Error(source->source() + ": frame " + std::to_string(i) + " has no depth map");
-          return source->read_depth(i);
-        },
-        {}, volumes_progress, &depth_envelopes);
-    inputs.depth_volumes = &volumes;
-    inputs.depth_envelopes = &depth_envelopes;
-  }
-  PathEnvelopes envelopes;
-  if (index) {
-    SubProgress envelopes_progress(progress, 0.3, 0.6, "envelopes");
-    envelopes = compute_path_envelopes(*index, path, 0, envelopes_progress);
-    inputs.envelopes = &envelopes;
-  }
-
-  SubProgress sampling_progress(progress, 0.6, 0.9, "placing keyframes");
-  inputs.progress = &sampling_progress;
-  // Still panoramas: every still is a keyframe (nothing between them to leave out).
-  const bool stills = from_project && project.capture.stills;
-  if (stills) std::cerr << "sample: the capture is still panoramas: every still is a keyframe\n";
-  const Keyframes keyframes =
-      stills ? every_frame_a_keyframe(path) : sample_keyframes(inputs, o.parameters, o.pinned);
-
-  SamplingLoss loss;
-  const SamplingStatistics stats = sampling_statistics(path, keyframes);
-  loss.kept = stats.kept;
-  loss.total = stats.total;
-  loss.reduction_ratio = stats.ratio;
-  loss.largest_gap_m = stats.max_gap_m;
-  progress.checkpoint(0.9, "loss");
-  if (index) {
-    loss.geometric = geometric_loss(path, keyframes, envelopes);
-    loss.has_geometric = true;
-  }
-  if (source) {
-    PhotometricOptions options;
-    options.max_frames = o.photometric_frames;
-    if (options.max_frames > 0) {
-      loss.photometric = photometric_loss(
-          path, keyframes,
-          [&](int i) {
-            check_frame(i);
-            return source->read(i);
-          },
-          options);
-      loss.has_photometric = true;
-    }
-  }
-  progress.report(1.0, "done");
+  pipeline::SampleStepResult result = pipeline::run_sample(work, options, progress);
   progress.finish();
+  const Keyframes& keyframes = result.outcome.keyframes;
+  const SamplingLoss& loss = result.outcome.loss;
 
   if (o.save) {
     project.keyframes = keyframes;

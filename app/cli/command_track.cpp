@@ -10,8 +10,10 @@
 // metres apart by wide-baseline matching instead of tracking; `--capture DIR` switches to that by itself
 // when KLT follows too few corners between neighbouring images (processing/stills/stills_detection.h) and
 // says so on stderr; --no-auto-stills keeps the tracker.
-// Progress goes to stderr. Frame indices (path file, --known-distance, --first/--last) are positions in the
-// whole capture: the natural order of the folder's image files, or the video's frame numbers.
+// Progress goes to stderr. --first/--last/--stride choose the frames tracked (positions in the natural order
+// of the folder's image files, or the video's frame numbers); the frame indices of the path file,
+// --known-distance and --anchors are the Capture's (model/capture.h): a video's frame numbers, a folder's
+// positions among the frames kept (0, 1, ...), as the studio numbers them.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -31,10 +33,12 @@
 #include "model/error.h"
 #include "model/path_io.h"
 #include "model/path_points.h"
+#include "model/project_io.h"
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
+#include "processing/pipeline/track_step.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/registration/registration.h"
 #include "processing/stills/candidate_fit.h"
@@ -45,41 +49,6 @@
 
 namespace plenopath::cli {
 namespace {
-
-// Position of each kept frame in the whole capture. A folder's frames are counted in the natural order of
-// its image files (as FrameSource sorts them), so a corrupt file left out keeps its place in the count.
-std::vector<int> capture_positions(const FrameSource& source) {
-  const int n = source.frame_count();
-  const FrameSourceOptions& o = source.options();
-  std::vector<int> positions(n);
-  for (int i = 0; i < n; ++i) positions[i] = o.first_frame + i * o.stride;
-  if (source.kind() == CaptureKind::kVideo) {
-    for (int i = 0; i < n; ++i) positions[i] = std::max(0, source.frame_number(i));
-  } else if (source.kind() == CaptureKind::kImageFolder && source.head_count() == 0) {
-    namespace fs = std::filesystem;
-    std::vector<std::string> names;
-    std::error_code ec;
-    for (const fs::directory_entry& e : fs::directory_iterator(source.source(), ec)) {
-      std::error_code e2;
-      if (!e.is_regular_file(e2)) continue;
-      const std::string name = e.path().filename().string();
-      std::string ext = e.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-      if (name.empty() || name[0] == '.') continue;
-      if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff" ||
-          ext == ".exr")
-        names.push_back(name);
-    }
-    std::sort(names.begin(), names.end(), natural_less);
-    std::map<std::string, int> position_of;
-    for (size_t p = 0; p < names.size(); ++p) position_of[names[p]] = static_cast<int>(p);
-    for (int i = 0; i < n; ++i) {
-      const auto it = position_of.find(source.frame_name(i));
-      if (it != position_of.end()) positions[i] = it->second;
-    }
-  }
-  return positions;
-}
 
 nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* detection, double camera_height,
                               bool height_given) {
@@ -125,7 +94,8 @@ nlohmann::json stills_to_json(const StillsResult& s, const StillsDetection* dete
 Command add_track_command(CLI::App& parent) {
   struct Options {
     std::string capture;
-    std::string stills;  // folder of still panoramas: solved as stills without asking
+    std::string stills;   // folder of still panoramas: solved as stills without asking
+    std::string project;  // project file: its capture, plan and camera height; the path written into it
     bool no_auto_stills = false;
     bool no_refine = false;
     double camera_height = 0.0;
@@ -157,9 +127,14 @@ Command add_track_command(CLI::App& parent) {
                   "wide-baseline matching, not tracking")
       ->excludes(capture_option);
   // One of the two is needed: a usage error (exit 2) when neither is given.
+  sub->add_option("--project", options->project,
+                  "Project file: track its capture (its plan and camera height too, as the studio's "
+                  "Process > Track does) and write the path and its points into it (keeping .bak)")
+      ->excludes(capture_option);
+  // One of them is needed: a usage error (exit 2) when none is given.
   sub->parse_complete_callback([options]() {
-    if (options->capture.empty() && options->stills.empty())
-      throw CLI::RequiredError("--capture or --stills");
+    if (options->capture.empty() && options->stills.empty() && options->project.empty())
+      throw CLI::RequiredError("--capture, --stills or --project");
   });
   sub->add_flag("--no-auto-stills", options->no_auto_stills,
                 "Track a folder even when its neighbouring images overlap too little for KLT (by default "
@@ -222,64 +197,75 @@ Command add_track_command(CLI::App& parent) {
         if (options->last >= 0 && options->last < options->first)
           throw Error("--last " + std::to_string(options->last) + " is before --first " +
                       std::to_string(options->first));
-        FrameSourceOptions source_options;
-        source_options.first_frame = options->first;
-        source_options.last_frame = options->last;
-        source_options.stride = options->stride;
-        std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
-        const int n = source->frame_count();
-        const bool plain_folder = source->kind() == CaptureKind::kImageFolder && source->head_count() == 0;
-        if (forced_stills && !plain_folder)
-          throw Error("--stills " + options->stills +
-                      ": not a folder of panoramas (a video or a rig capture is "
-                      "tracked with --capture)");
-        // Stills or video: forced, or decided by how well KLT follows corners between neighbours.
-        const StillsChoice choice = choose_stills(
-            n, [&](int i) { return source->read(i); }, forced_stills, plain_folder, !options->no_auto_stills);
-        const bool as_stills = choice.stills;
-        if (choice.detected && as_stills && !options->quiet)
-          std::cerr << "track: " << options->capture << " " << choice.reason
-                    << ". Solving them as stills (--no-auto-stills tracks them anyway)\n";
-        std::vector<int> positions = capture_positions(*source);
-        nlohmann::json stills_order;
-        if (as_stills) {
-          // Stills come in the order they were shot (EXIF time) when every one says when.
-          const StillsFolder folder = stills_folder(*source);
-          if (!options->quiet) {
-            std::cerr << "track: stills ordered " << folder.order;
-            if (folder.stills_with_gps > 0)
-              std::cerr << "; " << folder.stills_with_gps << " carry a GPS position";
-            std::cerr << "\n";
-            for (const std::string& note : folder.notes) std::cerr << "track: " << note << "\n";
-          }
-          stills_order = {
-              {"order", folder.order}, {"with_gps", folder.stills_with_gps}, {"notes", folder.notes}};
-          source = FrameSource::open_capture(folder.capture);
-          std::iota(positions.begin(), positions.end(), 0);
+        // The capture as the studio imports it: its Capture numbers the frames (Capture::frame_index_of_kept:
+        // a video's frame numbers, a folder's positions among the frames kept), and the work below is the
+        // pipeline's track step (processing/pipeline/track_step.h), as the studio's Process > Track.
+        Project project;
+        const bool from_project = !options->project.empty();
+        if (from_project) {
+          if (!options->stills.empty())
+            throw Error("--stills with --project: import the stills into the project as stills instead");
+          if (options->first != 0 || options->last >= 0 || options->stride != 1)
+            throw Error(
+                "--first, --last and --stride choose frames of --capture; a project's capture is "
+                "tracked as it was imported");
+          project = load_project(options->project);
+          if (project.capture.empty())
+            throw Error(options->project + ": the project has no capture to track");
+          options->capture = project.capture.source;
+          if (options->camera_height > 0)
+            project.capture.camera_height_m = options->camera_height;
+          else
+            options->camera_height = project.capture.camera_height_m;
+        } else {
+          FrameSourceOptions source_options;
+          source_options.first_frame = options->first;
+          source_options.last_frame = options->last;
+          source_options.stride = options->stride;
+          const std::unique_ptr<FrameSource> source = FrameSource::open(options->capture, source_options);
+          if (forced_stills && !(source->kind() == CaptureKind::kImageFolder && source->head_count() == 0))
+            throw Error("--stills " + options->stills +
+                        ": not a folder of panoramas (a video or a rig capture is "
+                        "tracked with --capture)");
+          project.capture = capture_from_frame_source(*source);
+          project.capture.camera_height_m = options->camera_height;
         }
+        const auto tracked = [&](int frame, const std::string& who) {
+          const int kept = project.capture.kept_of_frame_index(frame);
+          if (kept < 0)
+            throw Error(who + "frame " + std::to_string(frame) +
+                        ", which is not among the tracked frames (see --first, --last, --stride)");
+          return kept;
+        };
         // Anchors are read and checked before the long tracking run.
         Anchors anchors;
         if (!options->anchors.empty()) {
           anchors = read_anchors_file(options->anchors);
           if (anchors.empty()) throw Error(options->anchors + ": no anchors in the file");
-          for (const Anchor& a : anchors)
-            if (std::find(positions.begin(), positions.end(), a.frame) == positions.end())
-              throw Error(options->anchors + ": anchor on frame " + std::to_string(a.frame) +
-                          ", which is not among the tracked frames (see --first, --last, --stride)");
+          for (const Anchor& a : anchors) tracked(a.frame, options->anchors + ": anchor on ");
+          project.anchors = anchors;
         }
-        // The plan is read before the long tracking run too.
-        FloorPlan plan;
-        if (!options->plan.empty()) {
+        // The plan is read before the long tracking run too (a project's own, unless --plan names another).
+        if (from_project && options->plan.empty() && !project.plan.empty()) {
+          if (!(options->camera_height > 0) && !options->quiet)
+            std::cerr
+                << "track: the project's camera height is unknown: the path is not placed on its plan\n";
+        } else if (!options->plan.empty()) {
           if (!(options->camera_height > 0))
             throw Error(
                 "--plan needs --camera-height: registration tells wall points from floor points by it");
-          plan = import_dxf(options->plan, options->import);
-          if (plan.occluder_segments().empty())
+          project.plan = import_dxf(options->plan, options->import);
+          if (project.plan.occluder_segments().empty())
             throw Error(options->plan +
                         ": registration needs walls, but the plan has no sight-blocking "
                         "segments (name the walls' layers with --occluders)");
         }
-        EgomotionOptions eo;
+        // The plan the path is placed on, by name: --plan's, or the project's own.
+        const std::string plan_name = !options->plan.empty()                    ? options->plan
+                                      : (from_project && !project.plan.empty()) ? options->project
+                                                                                : std::string();
+        pipeline::TrackStepOptions to;
+        EgomotionOptions& eo = to.egomotion;
         eo.camera_height_m = options->camera_height;
         eo.klt.work_width = options->work_width;
         eo.loop.enabled = !options->no_loop_closure;
@@ -294,16 +280,9 @@ Command add_track_command(CLI::App& parent) {
             throw Error(options->mask + ": the mask is all black (no pixel left to track)");
         }
         if (options->known_distance.size() == 3) {
-          // Capture positions to positions among the tracked frames.
-          auto tracked = [&](double frame) {
-            const auto it = std::find(positions.begin(), positions.end(), static_cast<int>(frame));
-            if (it == positions.end())
-              throw Error("--known-distance: frame " + std::to_string(static_cast<int>(frame)) +
-                          " is not among the tracked frames (see --first, --last, --stride)");
-            return static_cast<int>(it - positions.begin());
-          };
-          eo.scale_frame_a = tracked(options->known_distance[0]);
-          eo.scale_frame_b = tracked(options->known_distance[1]);
+          // Capture indices to kept frames, the tracker's numbering.
+          eo.scale_frame_a = tracked(static_cast<int>(options->known_distance[0]), "--known-distance: ");
+          eo.scale_frame_b = tracked(static_cast<int>(options->known_distance[1]), "--known-distance: ");
           eo.scale_distance_m = options->known_distance[2];
           try {
             eo.check();
@@ -311,64 +290,90 @@ Command add_track_command(CLI::App& parent) {
             throw Error(std::string("--known-distance: ") + e.what());
           }
         }
-        EgomotionResult r;
-        nlohmann::json stills_summary;
-        std::vector<StillsPair> stills_pairs;  // every verified pair, for placing stills along them
-        if (as_stills) {
-          StillsOptions so;
-          const bool height_given = options->camera_height > 0;
-          if (height_given)
-            so.camera_height_m = options->camera_height;
-          else if (!options->quiet)
+        const bool height_given = options->camera_height > 0;
+        to.stills.features.work_width = sub->count("--work-width") ? options->work_width : 2048;
+        if (to.stills.features.work_width % 2) ++to.stills.features.work_width;
+        to.force_stills = forced_stills;
+        to.auto_stills = !options->no_auto_stills;
+        to.place_on_plan = !plan_name.empty();
+        to.place.camera_height_m = options->camera_height;
+        to.place.refine_on_walls = !options->no_refine;
+        to.place.require = pipeline::PlaceStepOptions::Require::kNone;  // checked below, after the report
+        to.refine_with_anchors = !anchors.empty();
+        if (!anchors.empty() && !options->quiet)
+          std::cerr << "track: refining with " << anchors.size() << " anchors after tracking\n";
+        if (forced_stills && !height_given && !options->quiet)
+          std::cerr << "track: stills: no --camera-height given, scale from a tripod height of "
+                    << to.stills.camera_height_m << " m\n";
+        ConsoleProgress progress("track", options->quiet);
+        pipeline::TrackStepResult result = pipeline::run_track(std::move(project), to, progress);
+        progress.finish();
+        const bool as_stills = result.choice.stills;
+        if (result.choice.detected && as_stills && !options->quiet) {
+          std::cerr << "track: " << options->capture << " " << result.choice.reason
+                    << ". Solved them as stills (--no-auto-stills tracks them anyway)\n";
+          if (!height_given)
             std::cerr << "track: stills: no --camera-height given, scale from a tripod height of "
-                      << so.camera_height_m << " m\n";
-          so.features.work_width = sub->count("--work-width") ? options->work_width : 2048;
-          if (so.features.work_width % 2) ++so.features.work_width;
-          ConsoleProgress progress("track: stills", options->quiet);
-          const StillsResult s = solve_stills(
-              n, [&](int i) { return source->read(i); }, so, progress);
-          progress.finish();
-          r = tracker_result_from_stills(s);
-          stills_pairs = s.pairs;
-          stills_summary = stills_to_json(s, choice.detected ? &choice.detection : nullptr,
-                                          so.camera_height_m, height_given);
+                      << to.stills.camera_height_m << " m\n";
+        }
+        EgomotionResult& r = result.tracking;
+        r.path = result.project.path;
+        r.tracked_points = result.project.path_points;
+        const Capture& capture = result.project.capture;
+        const int n = capture.frame_count;
+        std::vector<int> positions(static_cast<std::size_t>(n));
+        for (int i = 0; i < n; ++i) positions[static_cast<std::size_t>(i)] = capture.frame_index_of_kept(i);
+        nlohmann::json stills_summary;
+        if (as_stills) {
+          const StillsResult& s = *result.stills;
+          nlohmann::json stills_order;
+          if (result.order) {  // stills come in the order they were shot (EXIF time) when every one says when
+            const StillsFolder& folder = *result.order;
+            if (!options->quiet) {
+              std::cerr << "track: stills ordered " << folder.order;
+              if (folder.stills_with_gps > 0)
+                std::cerr << "; " << folder.stills_with_gps << " carry a GPS position";
+              std::cerr << "\n";
+              for (const std::string& note : folder.notes) std::cerr << "track: " << note << "\n";
+            }
+            stills_order = {
+                {"order", folder.order}, {"with_gps", folder.stills_with_gps}, {"notes", folder.notes}};
+          }
+          const double stills_height = height_given ? options->camera_height : to.stills.camera_height_m;
+          StillsResult with_path = s;
+          with_path.path = r.path;
+          stills_summary =
+              stills_to_json(with_path, result.choice.detected ? &result.choice.detection : nullptr,
+                             stills_height, height_given);
           stills_summary["capture_order"] = stills_order;
           if (!options->quiet && !s.unconnected.empty()) {
             std::cerr << "track: stills: " << s.unconnected.size() << " of " << n
                       << " stills connect to no other still:";
-            for (int i : s.unconnected) std::cerr << " " << source->frame_name(i);
+            for (int i : s.unconnected)
+              std::cerr << " "
+                        << (i >= 0 && i < static_cast<int>(capture.frame_names.size())
+                                ? capture.frame_names[static_cast<std::size_t>(i)]
+                                : std::to_string(i));
             std::cerr << "\n";
           }
-        } else {
-          ConsoleProgress progress("track", options->quiet);
-          r = EgomotionTracker::run(
-              n, [&](int i) { return source->read(i); }, eo, progress);
-          progress.finish();
         }
-        renumber_frames(&r.path, positions);
-        renumber_point_frames(&r.tracked_points, positions);
-        if (source->kind() == CaptureKind::kImageFolder)
-          for (int i = 0; i < n; ++i) r.path.frames[i].file = source->frame_name(i);
         nlohmann::json registration;
-        if (!options->plan.empty()) {
-          RegistrationOptions ro;
-          ro.camera_height_m = options->camera_height;
-          ConsoleProgress register_progress("track: registration", options->quiet);
-          RegistrationResult reg = register_on_plan(r.path, r.tracked_points, plan, ro, register_progress);
-          register_progress.finish();
-          if (as_stills) {  // repeated rooms: what the stills see picks among the placements
-            CandidateFitOptions fit_options;
-            fit_options.fit.camera_height_m = options->camera_height;
-            ConsoleProgress fit_progress("track: stills against the plan", options->quiet);
-            const CandidateFitReport fit = rerank_by_still_fit(
-                &reg, r.path, [&](int i) { return source->read(i); }, plan, fit_options, fit_progress);
-            fit_progress.finish();
-            if (!options->quiet && fit.pieces_reordered > 0)
-              std::cerr << "track: stills: " << fit.pieces_reordered
+        if (!plan_name.empty() && !result.placement) {
+          // As the studio: a project's path that cannot be placed is still worth having, unplaced.
+          if (!from_project) throw Error(plan_name + ": " + result.placement_error);
+          if (!options->quiet) std::cerr << "track: " << result.summary << "\n";
+          registration = {{"placed", false}, {"reason", result.placement_error}};
+        } else if (!plan_name.empty()) {
+          const pipeline::PlaceStepResult& placed = *result.placement;
+          const RegistrationResult& reg = placed.choices.result;
+          if (as_stills &&
+              !options->quiet) {  // repeated rooms: what the stills see picks among the placements
+            if (placed.still_fit.pieces_reordered > 0)
+              std::cerr << "track: stills: " << placed.still_fit.pieces_reordered
                         << " piece(s) placed by what the stills see rather than by their points\n";
-            if (!options->quiet && fit.pieces_refused > 0)
+            if (placed.still_fit.pieces_refused > 0)
               std::cerr
-                  << "track: stills: " << fit.pieces_refused
+                  << "track: stills: " << placed.still_fit.pieces_refused
                   << " piece(s) left off the plan: their stills do not fit where their points put them\n";
           }
           registration = registration_to_json(reg);
@@ -376,35 +381,15 @@ Command add_track_command(CLI::App& parent) {
           // Stills that registration cannot place (no points of their own, walls too far for their points)
           // are not an error: the path is written with what is placed, and the rest are named below for
           // `place-still` (one click each).
-          if (!as_stills) require_registered(reg, options->plan);
-          r.path = apply_registration(r.path, reg, {}, &r.tracked_points);
-          // A group of stills left where the stills pipeline put it is not on the plan: unplaced.
-          if (as_stills)
-            for (const PieceRegistration& p : reg.pieces)
-              if (!p.ok && p.piece < static_cast<int>(r.path.pieces.size()))
-                r.path.pieces[static_cast<std::size_t>(p.piece)].placed = false;
+          if (!as_stills && !from_project) require_registered(reg, plan_name);
           if (!options->no_refine) {
-            PlanRefinementOptions refine_options;
-            refine_options.registration = ro;
-            ConsoleProgress refine_progress("track: refinement on the walls", options->quiet);
-            PlanRefinementReport refinement;
-            r.path =
-                refine_on_plan(r.path, &r.tracked_points, plan, refine_options, &refinement, refine_progress);
-            refine_progress.finish();
-            registration["plan_refinement"] = plan_refinement_to_json(refinement);
-            if (!options->quiet) print_plan_refinement(std::cerr, refinement);
+            registration["plan_refinement"] = plan_refinement_to_json(placed.choices.refinement);
+            if (!options->quiet) print_plan_refinement(std::cerr, placed.choices.refinement);
           }
           if (as_stills) {
             // Stills with a pair to a placed one but no length: along the pair's direction, the plan
             // saying how far.
-            PairPlacementOptions pair_options;
-            pair_options.fit.camera_height_m = options->camera_height;
-            PairPlacementReport pair_report;
-            ConsoleProgress pair_progress("track: stills along their pairs", options->quiet);
-            r.path = place_stills_along_pairs(
-                r.path, stills_pairs, [&](int i) { return source->read(i); }, plan, pair_options,
-                &pair_report, pair_progress);
-            pair_progress.finish();
+            const PairPlacementReport& pair_report = result.along_pairs;
             nlohmann::json along = nlohmann::json::array();
             for (const PairPlacement& q : pair_report.placed)
               along.push_back({{"still", q.frame},
@@ -424,25 +409,21 @@ Command add_track_command(CLI::App& parent) {
               std::cerr << "track: stills: " << unplaced.size()
                         << " still(s) could not be placed on the plan by themselves:";
               for (const auto& u : unplaced) std::cerr << " " << u.get<std::string>();
-              std::cerr << "\ntrack: place each with `plenopath place-still --plan " << options->plan
+              std::cerr << "\ntrack: place each with `plenopath place-still --plan " << plan_name
                         << " --image STILL --at X Y` (roughly where it was shot)\n";
             }
           }
         }
-        AnchorRefinementReport anchor_report;
-        if (!anchors.empty()) {
-          if (!options->quiet) std::cerr << "track: refining with " << anchors.size() << " anchors\n";
-          ConsoleProgress anchor_progress("track: anchors", options->quiet);
-          r.path = refine_path_with_anchors(r.path, anchors, {}, &anchor_report, anchor_progress);
-          anchor_progress.finish();
-          // Two anchors or more fix the scale too.
-          if (anchors.size() >= 2) r.path.scale_source = r.scale_source = "anchors";
-        }
+        const AnchorRefinementReport& anchor_report = result.anchors;
         double worst_residual = 0.0;
         nlohmann::json residuals = nlohmann::json::array();
         for (const AnchorResidual& a : anchor_report.residuals) {
           worst_residual = std::max(worst_residual, a.distance_m);
           residuals.push_back({{"frame", a.frame}, {"distance_m", a.distance_m}});
+        }
+        if (from_project) {
+          save_project(result.project, options->project);
+          write_path_points_file(result.project.path_points, points_file_beside(options->project));
         }
         if (!options->out.empty()) {
           write_path_file(r.path, options->out);
@@ -507,8 +488,7 @@ Command add_track_command(CLI::App& parent) {
           if (r.path.piece_count() > 1) {
             std::cout << "The images do not connect everywhere: the path is in " << r.path.piece_count()
                       << " pieces, each with its own scale"
-                      << (options->plan.empty() ? "; place each on the plan with its own anchors or --plan"
-                                                : "")
+                      << (plan_name.empty() ? "; place each on the plan with its own anchors or --plan" : "")
                       << "\n";
             for (int k = 0; k < r.path.piece_count(); ++k) {
               const PathPiece& p = r.path.pieces[k];
@@ -521,9 +501,10 @@ Command add_track_command(CLI::App& parent) {
             std::cout << "Aligned and refined with " << anchors.size() << " anchors from " << options->anchors
                       << ": largest anchor residual " << std::setprecision(3) << worst_residual << " m, "
                       << anchor_report.iterations << " iterations\n";
-          if (!options->plan.empty())
-            std::cout << "Placed on " << options->plan << " by " << r.tracked_points.size() << " points\n";
+          if (result.placement)
+            std::cout << "Placed on " << plan_name << " by " << r.tracked_points.size() << " points\n";
           if (!options->out.empty()) std::cout << "Wrote " << options->out << "\n";
+          if (from_project) std::cout << "Wrote the path into " << options->project << "\n";
         }
         return kExitOk;
       }};

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "model/error.h"
-#include "widgets/anchor_commands.h"
+#include "processing/pipeline/visibility_step.h"
 #include "widgets/document_commands.h"
 #include "widgets/map_view.h"
 #include "widgets/project_document.h"
@@ -36,7 +36,8 @@ bool PlacementService::pick(int piece, int candidate) {
   Project after = document_.snapshot();
   apply_placement(choices_, choice, &after.path, &after.path_points);
   unsigned flags = widgets::kPathChanged;
-  if (std::optional<VisibilityCells> cells = widgets::cells_following_path(document_.project(), after.path)) {
+  if (std::optional<VisibilityCells> cells =
+          pipeline::cells_following_path(document_.project(), after.path)) {
     after.visibility = std::move(*cells);
     flags |= widgets::kVisibilityChanged;
   }

@@ -180,13 +180,7 @@ void ExportTourReaction::on_triggered() {
         window_.document(), QObject::tr("Tour export settings"), after, widgets::kSettingsChanged));
   }
   const std::string out = choice.output.toStdString();
-  window_.tasks().start(QObject::tr("Export tour"), [out](Project snapshot, Progress& progress) {
-    const TourExportOptions options = TourExportOptions::from_project(snapshot, out);
-    const TourExportReport report = export_tour(snapshot, options, progress);
-    progress.report(1.0, "exported " + std::to_string(report.keyframes) + " keyframes, " +
-                             std::to_string(report.package_bytes / 1024) + " KiB");
-    return widgets::TaskResult{std::move(snapshot), 0};  // an export changes nothing in the document
-  });
+  window_.tasks().start(QObject::tr("Export tour"), export_tour_task(out));
 }
 
 ImportTourReaction::ImportTourReaction(QAction* action, MainWindow& window) : Reaction(action, window) {

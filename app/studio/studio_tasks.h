@@ -39,5 +39,8 @@ widgets::TaskFunction compute_visibility_task();
 // fixes as weak priors when there are any; processing/anchors/anchor_refinement.h). Progress per solver
 // iteration; cancel stops the solver and changes nothing.
 widgets::TaskFunction refine_with_anchors_task();
+// File > Export tour: the packaged walkthrough at `output` (a folder, or a .zip) with the project's tour
+// settings (processing/pipeline/export_step.h). Changes nothing in the document.
+widgets::TaskFunction export_tour_task(const std::string& output);
 
 }  // namespace plenopath::studio

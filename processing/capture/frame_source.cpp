@@ -218,8 +218,7 @@ std::unique_ptr<FrameSource> FrameSource::open_capture(const Capture& capture) {
     case CaptureKind::kNone:
       throw Error("the project has no capture");
     case CaptureKind::kVideo: {
-      if (capture.frame_count > 0)
-        options.last_frame = capture.first_frame + (capture.frame_count - 1) * options.stride;
+      if (capture.frame_count > 0) options.last_frame = capture.frame_index_of_kept(capture.frame_count - 1);
       return open(capture.source, options);
     }
     case CaptureKind::kImageFolder: {
@@ -380,11 +379,10 @@ Capture capture_from_frame_source(const FrameSource& source, Capture capture) {
   // constant-rate capture keeps its project file small.
   capture.frame_times_s.clear();
   if (source.kind() == CaptureKind::kVideo) {
-    const int step = std::max(1, source.options().stride);
+    // The nominal times: the capture's own (frame_times_s is empty so far).
     bool even = true;
     for (int i = 0; i < source.frame_count() && even; ++i)
-      even = std::abs(source.timestamp_s(i) - (source.options().first_frame + double(i) * step) /
-                                                  source.frame_rate()) <= kEvenlySpacedToleranceS;
+      even = std::abs(source.timestamp_s(i) - capture.frame_time_s(i)) <= kEvenlySpacedToleranceS;
     if (!even)
       for (int i = 0; i < source.frame_count(); ++i) capture.frame_times_s.push_back(source.timestamp_s(i));
   }

@@ -173,7 +173,7 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
     frame.index = f.at(0).integer();
     frame.x = f.at(1).number();
     frame.y = f.at(2).number();
-    frame.heading = radians(f.at(3).number());
+    frame.heading = radians_of_written(f.at(3).number());
     p.path.frames.push_back(frame);
   }
 
@@ -231,7 +231,7 @@ Project project_from_tour_json(const json& tour, const std::string& file) {
     p.geo.latitude_deg = g->number("latitude_deg");
     p.geo.longitude_deg = g->number("longitude_deg");
     p.geo.altitude_m = g->number_or("altitude_m", 0.0);
-    p.geo.plan_rotation = radians(g->number_or("plan_rotation_deg", 0.0));
+    p.geo.plan_rotation = radians_of_written(g->number_or("plan_rotation_deg", 0.0));
     p.geo.scale = g->number_or("scale", 1.0);
     const JsonReader o = g->at("plan_origin");
     p.geo.plan_origin = {o.at(0).number(), o.at(1).number()};

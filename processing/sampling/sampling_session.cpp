@@ -73,9 +73,10 @@ SamplingOutcome SamplingSession::run(const Project& project, const SamplingReque
       std::vector<DepthVolume> volumes = depth_volumes_along_path(
           path,
           [&](int index) {
-            if (index < 0 || index >= source->frame_count() || !source->has_depth(index))
+            const int kept = project.capture.kept_of_frame_index(index);  // a capture index: the kept frame
+            if (kept < 0 || kept >= source->frame_count() || !source->has_depth(kept))
               throw Error(project.capture.depth_folder + ": no depth map for frame " + std::to_string(index));
-            return source->read_depth(index);
+            return source->read_depth(kept);
           },
           {}, volumes_progress, &depth_envelopes);
       c.volumes = std::move(volumes);

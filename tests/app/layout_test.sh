@@ -34,5 +34,10 @@ grep -rlE '#include <(Q[A-Za-z]+|vtk[A-Za-z]+\.h)>' processing model rig && bad 
 # Each subsystem links only what it uses: CGAL and Ceres are private to their libraries.
 grep -q 'plenopath_processing_library(hotspots PUBLIC plenopath_model plenopath_rig)' processing/CMakeLists.txt ||
   bad "processing/CMakeLists.txt: hotspots should link only model and rig"
+# The pipeline layer (issue 17) is in the umbrella both faces link, and knows nothing of the faces.
+tr '\n' ' ' < processing/CMakeLists.txt |
+  grep -qE 'target_link_libraries\(plenopath_processing INTERFACE[^)]*plenopath_pipeline' ||
+  bad "processing/CMakeLists.txt: plenopath_processing should link plenopath_pipeline"
+grep -rlE '#include "(app|widgets)/' processing model rig && bad "processing, model or rig include app/ or widgets/"
 [[ $fail -eq 0 ]] && echo "layout: ok"
 exit $fail

@@ -88,7 +88,7 @@ assert "pieces" not in p and all("piece" not in f for f in p["frames"]), p  # on
 PY
 "$cli" track --capture "$tmp/cap" --no-loop-closure --out "$tmp/noloop.json" --quiet > /dev/null 2> "$tmp/err.txt" \
   || fail "track --no-loop-closure exit $?: $(cat "$tmp/err.txt")"
-# A range and a stride: indices stay positions in the whole capture (natural order).
+# A range and a stride: the Capture numbers the frames kept 0, 1, ... (model/capture.h, as the studio does).
 "$cli" track --capture "$tmp/cap" --first 1 --last 2 --out "$tmp/range.json" --quiet > /dev/null 2> "$tmp/err.txt" \
   || fail "track --first 1 --last 2 exit $?: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/cap" --stride 2 --out "$tmp/stride.json" --quiet > /dev/null 2> "$tmp/err.txt" \
@@ -133,8 +133,8 @@ python3 - "$tmp/range.json" "$tmp/stride.json" <<'PY' || fail "range/stride outp
 import json, sys
 r = json.load(open(sys.argv[1]))
 s = json.load(open(sys.argv[2]))
-assert [(f["index"], f["file"]) for f in r["frames"]] == [(1, "f10.png"), (2, "f11.png")], r
-assert [(f["index"], f["file"]) for f in s["frames"]] == [(0, "f9.png"), (2, "f11.png")], s
+assert [(f["index"], f["file"]) for f in r["frames"]] == [(0, "f10.png"), (1, "f11.png")], r
+assert [(f["index"], f["file"]) for f in s["frames"]] == [(0, "f9.png"), (1, "f11.png")], s
 PY
 "$cli" track --capture "$tmp/cap" --first 2 --last 1 --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "--last before --first: exit $code"
@@ -142,7 +142,7 @@ grep -q -- "--last" "$tmp/err.txt" || fail "--last before --first message: $(cat
 "$cli" track --capture "$tmp/cap" --first 7 --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "--first beyond the capture: exit $code"
 grep -q "cap" "$tmp/err.txt" || fail "--first beyond the capture message: $(cat "$tmp/err.txt")"
-"$cli" track --capture "$tmp/cap" --stride 2 --known-distance 0 1 2 --quiet 2> "$tmp/err.txt"; code=$?
+"$cli" track --capture "$tmp/cap" --stride 2 --known-distance 0 2 2 --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "--known-distance on an untracked frame: exit $code"
 grep -q "not among the tracked frames" "$tmp/err.txt" || fail "untracked frame message: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/nothing-here" 2> "$tmp/err.txt"; code=$?
