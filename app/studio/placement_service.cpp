@@ -36,8 +36,8 @@ bool PlacementService::pick(int piece, int candidate) {
   Project after = document_.snapshot();
   apply_placement(choices_, choice, &after.path, &after.path_points);
   unsigned flags = widgets::kPathChanged;
-  if (std::optional<VisibilityCells> cells =
-          pipeline::cells_following_path(document_.project(), after.path)) {
+  if (std::optional<VisibilityCells> cells = cells_following_path(
+          document_.project(), after.path, null_progress(), document_.visibility_index().get())) {
     after.visibility = std::move(*cells);
     flags |= widgets::kVisibilityChanged;
   }

@@ -151,7 +151,8 @@ void ComputeVisibilityReaction::update_enabled() {
 }
 
 void ComputeVisibilityReaction::on_triggered() {
-  window_.tasks().start(QObject::tr("Compute visibility"), compute_visibility_task());
+  window_.tasks().start(QObject::tr("Compute visibility"),
+                        compute_visibility_task(window_.document().visibility_index()));
 }
 
 ExportTourReaction::ExportTourReaction(QAction* action, MainWindow& window) : Reaction(action, window) {
@@ -366,7 +367,8 @@ void PlacePathOnPlanReaction::update_enabled() {
 
 void PlacePathOnPlanReaction::on_triggered() {
   auto outcome = std::make_shared<PlacementOutcome>();
-  if (window_.tasks().start(QObject::tr("Place path on plan"), place_path_on_plan_task(outcome)))
+  if (window_.tasks().start(QObject::tr("Place path on plan"),
+                            place_path_on_plan_task(outcome, window_.document().visibility_index())))
     offer_when_applied(window_, outcome);
 }
 

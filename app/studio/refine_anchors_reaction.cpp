@@ -23,7 +23,8 @@ void RefineWithAnchorsReaction::update_enabled() {
 }
 
 void RefineWithAnchorsReaction::on_triggered() {
-  if (!window_.tasks().start(QObject::tr("Refine path with anchors"), refine_with_anchors_task()))
+  if (!window_.tasks().start(QObject::tr("Refine path with anchors"),
+                             refine_with_anchors_task(window_.document().visibility_index())))
     window_.show_error(QObject::tr("Busy"),
                        QObject::tr("Another task is running; wait for it or cancel it first."));
 }

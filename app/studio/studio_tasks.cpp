@@ -100,9 +100,12 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
   };
 }
 
-widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement) {
-  return [placement](Project project, Progress& progress) {
-    pipeline::PlaceStepResult result = pipeline::run_place_on_plan(std::move(project), {}, progress);
+widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement,
+                                              std::shared_ptr<const SharedVisibilityIndex> index) {
+  return [placement, index](Project project, Progress& progress) {
+    pipeline::PlaceStepOptions options;
+    options.visibility_index = index;
+    pipeline::PlaceStepResult result = pipeline::run_place_on_plan(std::move(project), options, progress);
     if (placement) *placement = {std::move(result.choices), result.summary};
     return TaskResult{std::move(result.project), result.changed};
   };
@@ -137,16 +140,20 @@ widgets::TaskFunction place_still_task(int frame, Eigen::Vector2d click,
   };
 }
 
-widgets::TaskFunction compute_visibility_task() {
-  return [](Project project, Progress& progress) {
-    pipeline::StepResult result = pipeline::run_visibility(std::move(project), {}, progress);
+widgets::TaskFunction compute_visibility_task(std::shared_ptr<const SharedVisibilityIndex> index) {
+  return [index](Project project, Progress& progress) {
+    pipeline::VisibilityStepOptions options;
+    options.visibility_index = index;
+    pipeline::StepResult result = pipeline::run_visibility(std::move(project), options, progress);
     return TaskResult{std::move(result.project), result.changed};
   };
 }
 
-widgets::TaskFunction refine_with_anchors_task() {
-  return [](Project project, Progress& progress) {
-    pipeline::RefineStepResult result = pipeline::run_refine(std::move(project), {}, progress);
+widgets::TaskFunction refine_with_anchors_task(std::shared_ptr<const SharedVisibilityIndex> index) {
+  return [index](Project project, Progress& progress) {
+    pipeline::RefineStepOptions options;
+    options.visibility_index = index;
+    pipeline::RefineStepResult result = pipeline::run_refine(std::move(project), options, progress);
     return TaskResult{std::move(result.project), result.changed};
   };
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/studio/placement.h"
+#include "processing/visibility/shared_visibility_index.h"
 #include "widgets/capture_import_dialog.h"
 #include "widgets/cg_scene_dialog.h"
 #include "widgets/task_runner.h"
@@ -26,19 +27,22 @@ widgets::TaskFunction render_cg_scene_task(const widgets::CgSceneChoices& choice
 widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placement = nullptr);
 // Process > Place path on plan: the path placed on the plan by its tracked points (placement.h); fails with
 // the reason when no piece fits. `placement` gets the candidates.
-widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement);
+widgets::TaskFunction place_path_on_plan_task(std::shared_ptr<PlacementOutcome> placement,
+                                              std::shared_ptr<const SharedVisibilityIndex> index = nullptr);
 // Process > Place still on plan: the still at capture index `frame` placed from the author's click (plan
 // metres), with the heading near `heading_hint_deg` when given; its piece moves with it, the visibility
 // cells go. `summary` receives the placement's sentence.
 widgets::TaskFunction place_still_task(int frame, Eigen::Vector2d click,
                                        std::optional<double> heading_hint_deg,
                                        std::shared_ptr<std::string> summary);
+// `index` (the tasks that compute visibility): the document's shared index of the plan
+// (ProjectDocument::visibility_index()), or null to build one on the worker.
 // Visibility events, cells and critical lines along the path (processing/visibility/visibility.h).
-widgets::TaskFunction compute_visibility_task();
+widgets::TaskFunction compute_visibility_task(std::shared_ptr<const SharedVisibilityIndex> index = nullptr);
 // The path refined with the anchors as priors (Ceres pose graph with a drift model, plus the capture's GPS
 // fixes as weak priors when there are any; processing/anchors/anchor_refinement.h). Progress per solver
 // iteration; cancel stops the solver and changes nothing.
-widgets::TaskFunction refine_with_anchors_task();
+widgets::TaskFunction refine_with_anchors_task(std::shared_ptr<const SharedVisibilityIndex> index = nullptr);
 // File > Export tour: the packaged walkthrough at `output` (a folder, or a .zip) with the project's tour
 // settings (processing/pipeline/export_step.h). Changes nothing in the document.
 widgets::TaskFunction export_tour_task(const std::string& output);

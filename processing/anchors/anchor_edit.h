@@ -11,6 +11,7 @@
 #include "model/project.h"
 #include "model/visibility_cells.h"
 #include "processing/util/progress.h"
+#include "processing/visibility/cells_following_path.h"
 
 namespace plenopath {
 
@@ -40,13 +41,5 @@ struct AnchorEditResult {
 AnchorEditResult edit_anchors(const Project& project, Anchors after, PathCorrection correction,
                               Progress& progress = null_progress(),
                               const SharedVisibilityIndex* index = nullptr);
-
-// The visibility cells for `moved_path` when the path of `project` moves: recomputed from the plan when the
-// project had cells (about 15 ms on the office sample), empty when they cannot be (no occluders); nullopt
-// when the project had none, so there is nothing to keep up to date. Cells of the old path would colour the
-// map and drive the visibility sampler with events at the wrong places. `index` as for edit_anchors.
-std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path,
-                                                    Progress& progress = null_progress(),
-                                                    const SharedVisibilityIndex* index = nullptr);
 
 }  // namespace plenopath

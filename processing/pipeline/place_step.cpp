@@ -106,7 +106,8 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   SubProgress refining(progress, 0.85, 0.97, "refinement on the walls");
   apply_placement(choices, choices.choice, &placed, &project.path_points, &choices.refinement, refining);
   SubProgress cells_progress(progress, 0.97, 1.0, "visibility cells along the placed path");
-  if (std::optional<VisibilityCells> cells = cells_following_path(project, placed, cells_progress))
+  if (std::optional<VisibilityCells> cells =
+          cells_following_path(project, placed, cells_progress, options.visibility_index.get()))
     project.visibility = std::move(*cells);
   project.path = std::move(placed);
 

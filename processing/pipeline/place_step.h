@@ -7,6 +7,7 @@
 // unplaced. The placed pieces are then refined on the walls (plan_refinement.h), which takes out the
 // tracker's drift. What registration found is kept (PlacementChoices) so that the map can show the runners-up
 // and the author can pick another one.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "processing/registration/registration.h"
 #include "processing/stills/candidate_fit.h"
 #include "processing/util/progress.h"
+#include "processing/visibility/shared_visibility_index.h"
 
 namespace plenopath::pipeline {
 
@@ -41,7 +43,8 @@ struct PlaceStepOptions {
   // writes nothing otherwise); kNone: nothing (the end of tracking: the tracked path is worth having).
   enum class Require { kNone, kAny, kEvery } require = Require::kAny;
   std::vector<int> pick;  // candidate per piece (0 = best), one per piece; empty = by anchors, else the best
-  void check() const;     // throws Error naming the field
+  std::shared_ptr<const SharedVisibilityIndex> visibility_index;  // for the cells that follow; null: built
+  void check() const;                                             // throws Error naming the field
 };
 
 struct PlaceStepResult : StepResult {

@@ -39,7 +39,8 @@ RefineStepResult run_refine(Project project, const RefineStepOptions& options, P
   out.summary = done;
   out.changed = kPathChanged;
   SubProgress cells_progress(progress, 0.95, 1.0, "visibility cells along the refined path");
-  if (std::optional<VisibilityCells> cells = cells_following_path(project, project.path, cells_progress)) {
+  if (std::optional<VisibilityCells> cells =
+          cells_following_path(project, project.path, cells_progress, options.visibility_index.get())) {
     project.visibility = std::move(*cells);
     out.changed |= kVisibilityChanged;
   }

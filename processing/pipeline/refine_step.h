@@ -3,18 +3,21 @@
 // processing/anchors/anchor_refinement.h), plus the capture's GPS fixes as weak priors when there are any;
 // the visibility cells follow the refined path when the project has cells. The studio's Process > Refine
 // with anchors and `plenopath refine` both run it.
+#include <memory>
 #include <vector>
 
 #include "processing/anchors/anchor_refinement.h"
 #include "processing/pipeline/step_result.h"
 #include "processing/util/progress.h"
+#include "processing/visibility/shared_visibility_index.h"
 
 namespace plenopath::pipeline {
 
 struct RefineStepOptions {
   AnchorRefinementOptions refinement;  // the solver's weights and iterations
   bool preview = false;                // only the fast warp between anchors (no solver, no GPS priors)
-  void check() const;                  // throws Error naming the field
+  std::shared_ptr<const SharedVisibilityIndex> visibility_index;  // for the cells that follow; null: built
+  void check() const;                                             // throws Error naming the field
 };
 
 struct RefineStepResult : StepResult {

@@ -27,7 +27,7 @@ struct TrackStepOptions {
   bool force_stills = false;  // solve the folder as stills whatever the capture says (`track --stills`)
   bool auto_stills = true;    // judge a plain folder by how well KLT follows neighbours
   bool place_on_plan = true;  // when the project has a plan: place the path on it afterwards
-  PlaceStepOptions place{0.0, true, PlaceStepOptions::Require::kNone, {}};
+  PlaceStepOptions place{0.0, true, PlaceStepOptions::Require::kNone, {}, nullptr};
   // Afterwards, the path aligned to the project's anchors and refined with them as priors (no GPS), the
   // scale from them with two or more (`track --anchors`).
   bool refine_with_anchors = false;

@@ -11,11 +11,13 @@ StepResult run_visibility(Project project, const VisibilityStepOptions& options,
     throw Error("the plan has no occluder layer: mark the walls' layer as blocking sight first");
   if (project.path.size() < 2) throw Error("the project has no camera path yet");
   progress.checkpoint(0.1, "building the visibility index");
-  const VisibilityIndex index(project.plan);
+  std::shared_ptr<const VisibilityIndex> index =
+      options.visibility_index ? options.visibility_index->get() : nullptr;
+  if (!index) index = std::make_shared<const VisibilityIndex>(project.plan);  // throws why it cannot
   progress.checkpoint(0.3, "events and cells along " + std::to_string(project.path.size()) + " frames");
   // Cancel reaches inside: the visibility workers stop at their next report.
   SubProgress cells_progress(progress, 0.3, 1.0);
-  project.visibility = index.cells_along_path(project.path, cells_progress);
+  project.visibility = index->cells_along_path(project.path, cells_progress);
   StepResult out;
   out.summary = std::to_string(project.visibility.cells.size()) + " cells, " +
                 std::to_string(project.visibility.events.size()) + " events along " +
@@ -24,18 +26,6 @@ StepResult run_visibility(Project project, const VisibilityStepOptions& options,
   out.project = std::move(project);
   out.changed = kVisibilityChanged;
   return out;
-}
-
-std::optional<VisibilityCells> cells_following_path(const Project& project, const CameraPath& moved_path,
-                                                    Progress& progress) {
-  if (project.visibility.empty()) return std::nullopt;
-  try {
-    return VisibilityIndex(project.plan).cells_along_path(moved_path, progress);
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const Error&) {
-    return VisibilityCells{};  // e.g. the plan has no occluders left: no cells rather than stale ones
-  }
 }
 
 }  // namespace plenopath::pipeline

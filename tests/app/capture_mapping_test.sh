@@ -15,8 +15,8 @@ pattern='first_frame[[:space:]]*\+|-[[:space:]]*([A-Za-z_]+(\.|->))*first_frame\
 whitelist=(
   'model/capture\.cpp ## . ## the one place the mapping lives'
   'model/capture\.h ## ^[[:space:]]*// ## comments describing the mapping'
-  'processing/capture/frame_source\.cpp ## for \(int p = options\.first_frame; p <= last; p \+= options\.stride\) ## choosing the files of a folder from the raw sorted list, before any Capture exists'
-  'processing/capture/frame_source\.cpp ## for \(long long raw = options\.first_frame; raw <= last; raw \+= options\.stride\) ## walking the raw video to index the frames it keeps, before any Capture exists'
+  'processing/capture/frame_source_folder\.cpp ## for \(int p = options\.first_frame; p <= last; p \+= options\.stride\) ## choosing the files of a folder from the raw sorted list, before any Capture exists'
+  'processing/capture/frame_source_video\.cpp ## for \(long long raw = options\.first_frame; raw <= last; raw \+= options\.stride\) ## walking the raw video to index the frames it keeps, before any Capture exists'
   'processing/capture/multi_head_capture\.cpp ## for \(int i = options\.first_frame; i <= last; i \+= options\.stride\) ## choosing the matched frames of a rig from the raw list, before any Capture exists'
   'processing/egomotion/klt_tracks\.(h|cpp) ## s\.first_frame ## a KLT track'"'"'s own first frame, not a capture'"'"'s'
   'processing/sampling/depth_section\.cpp ## u \* stride ## a pixel stride across a depth image, not frames'
