@@ -25,6 +25,7 @@
 #include "app/studio/profile_service.h"
 #include "processing/visibility/visibility.h"
 #include "rig/synthetic_camera.h"
+#include "tests/widgets/send_mouse.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
@@ -37,14 +38,8 @@
 namespace plenopath {
 namespace {
 
+using test::send_mouse;
 using test::wait_until;
-
-void send_mouse(QWidget* widget, QEvent::Type type, QPoint pixel, Qt::MouseButtons buttons,
-                Qt::KeyboardModifiers modifiers) {
-  QMouseEvent event(type, QPointF(pixel), QPointF(widget->mapToGlobal(pixel)),
-                    type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton, buttons, modifiers);
-  QApplication::sendEvent(widget, &event);
-}
 
 // When the map was drawing: its VTK renders (StartEvent to EndEvent) and the paint and update events of the
 // widget and its window, in which Qt composes the rendered frame into the window (in software here too).

@@ -22,6 +22,7 @@
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/visibility/visibility.h"
 #include "rig/synthetic_camera.h"
+#include "tests/widgets/send_mouse.h"
 #include "tests/widgets/test_project.h"
 #include "tests/widgets/test_studio.h"
 #include "tests/widgets/wait_until.h"
@@ -41,13 +42,7 @@ using test::test_project;
 
 using Studio = test::TestStudio;
 using test::count_near;
-
-void send_mouse(QWidget* widget, QEvent::Type type, QPoint pixel, Qt::MouseButtons buttons,
-                Qt::KeyboardModifiers modifiers) {
-  QMouseEvent event(type, QPointF(pixel), QPointF(widget->mapToGlobal(pixel)),
-                    type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton, buttons, modifiers);
-  QApplication::sendEvent(widget, &event);
-}
+using test::send_mouse;
 
 // Press at `from`, move there in `steps` steps, release at `to`, holding `modifiers` all along.
 void drag(QWidget* widget, QPoint from, QPoint to, Qt::KeyboardModifiers modifiers, int steps = 8,
