@@ -397,6 +397,18 @@ Command add_track_command(CLI::App& parent) {
                                {"fit_px", q.pose.score_px},
                                {"runner_up_fit_px", q.runner_up_fit_px}});
             registration["placed_along_pairs"] = along;
+            nlohmann::json by_order = nlohmann::json::array();
+            for (const CaptureOrderPlacement& q : result.capture_order.placed)
+              by_order.push_back({{"still", q.frame},
+                                  {"from", q.from_frames},
+                                  {"fit_px", q.pose.score_px},
+                                  {"elsewhere_fit_px", q.elsewhere_fit_px},
+                                  {"pairs_agreeing", q.pairs_agreeing},
+                                  {"pairs_voting", q.pairs_voting}});
+            registration["placed_by_capture_order"] = by_order;
+            if (!options->quiet && !result.capture_order.placed.empty())
+              std::cerr << "track: stills: " << result.capture_order.placed.size()
+                        << " still(s) placed next to their neighbours in capture order\n";
             if (!options->quiet && !pair_report.placed.empty())
               std::cerr << "track: stills: " << pair_report.placed.size()
                         << " still(s) placed along their pairs, the plan fixing the distance\n";

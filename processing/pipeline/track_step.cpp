@@ -105,14 +105,35 @@ TrackStepResult run_track(Project project, const TrackStepOptions& options, Prog
         project = std::move(placed.project);
         placed.project = {};
         std::string line = placed.summary;
-        if (out.choice.stills) {  // the stills with a pair but no length: along it, the plan saying how far
+        if (out.choice.stills) {
+          // The stills registration left off the plan: next to their neighbours in capture order, then
+          // along pairs that have a direction but no length, the plan saying how far; again next to their
+          // neighbours, from the stills the pairs placed. A group without metric scale is taken as stills
+          // of their own first.
+          const double height = options.place.camera_height_m > 0 ? options.place.camera_height_m
+                                                                  : project.capture.camera_height_m;
+          split_unscaled_groups(&project.path, &project.path_points);
+          CaptureOrderPlacementOptions order_options;
+          order_options.fit.camera_height_m = height;
           PairPlacementOptions pair_options;
-          pair_options.fit.camera_height_m = options.place.camera_height_m > 0
-                                                 ? options.place.camera_height_m
-                                                 : project.capture.camera_height_m;
-          SubProgress along_progress(progress, 0.97, 1.0, "stills along their pairs");
-          project.path = place_stills_along_pairs(project.path, out.stills->pairs, read_index, project.plan,
-                                                  pair_options, &out.along_pairs, along_progress);
+          pair_options.fit.camera_height_m = height;
+          SubProgress order_progress(progress, 0.97, 0.98, "stills next to their neighbours");
+          project.path = place_stills_by_capture_order(project.path, out.stills->pairs, read_index,
+                                                       project.plan, &project.path_points, order_options,
+                                                       &out.capture_order, order_progress);
+          SubProgress along_progress(progress, 0.98, 0.99, "stills along their pairs");
+          project.path =
+              place_stills_along_pairs(project.path, out.stills->pairs, read_index, project.plan,
+                                       &project.path_points, pair_options, &out.along_pairs, along_progress);
+          if (!out.along_pairs.placed.empty()) {
+            SubProgress again(progress, 0.99, 1.0, "stills next to their neighbours");
+            project.path =
+                place_stills_by_capture_order(project.path, out.stills->pairs, read_index, project.plan,
+                                              &project.path_points, order_options, &out.capture_order, again);
+          }
+          if (!out.capture_order.placed.empty())
+            line += "; " + std::to_string(out.capture_order.placed.size()) +
+                    " still(s) placed next to their neighbours in capture order";
           if (!out.along_pairs.placed.empty())
             line +=
                 "; " + std::to_string(out.along_pairs.placed.size()) + " still(s) placed along their pairs";

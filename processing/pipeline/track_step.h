@@ -15,6 +15,7 @@
 #include "processing/pipeline/place_step.h"
 #include "processing/stills/stills.h"
 #include "processing/stills/stills_along_pairs.h"
+#include "processing/stills/stills_by_capture_order.h"
 #include "processing/stills/stills_tracking.h"
 
 namespace plenopath::pipeline {
@@ -41,6 +42,7 @@ struct TrackStepResult : StepResult {
   std::optional<StillsFolder> order;   // when the capture was found to be stills here: order, GPS, notes
   std::optional<PlaceStepResult> placement;  // when it was placed on the plan (its project moved out)
   std::string placement_error;               // why it was not placed although the project has a plan
+  CaptureOrderReport capture_order;          // stills placed next to their neighbours in capture order
   PairPlacementReport along_pairs;           // stills placed along their pairs
   AnchorRefinementReport anchors;            // with refine_with_anchors
 };

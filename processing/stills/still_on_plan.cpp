@@ -198,6 +198,7 @@ void StillOnPlanOptions::check() const {
   if (!(nadir_limit_deg > -90 && nadir_limit_deg < 0)) throw Error("nadir_limit_deg must be in (-90, 0)");
   if (heading_hint_deg && !std::isfinite(*heading_hint_deg)) throw Error("heading_hint_deg must be finite");
   if (!(heading_hint_spread_deg > 0)) throw Error("heading_hint_spread_deg must be > 0");
+  if (!(elsewhere_gap_m >= 0)) throw Error("elsewhere_gap_m must be >= 0");
 }
 
 namespace {
@@ -246,14 +247,26 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
     Eigen::Vector2d p;
     int j;
   };
-  std::vector<Pose> coarse;  // every position's every heading, for the runner-up
-  coarse.reserve(positions.size() * headings.size());
+  // Every position's headings that score better than both their neighbours (the others can be neither a
+  // seed nor the runner-up: a neighbour within a degree beats them); a search over a whole room tries
+  // thousands of positions.
+  std::vector<Pose> coarse;
   const int coarse_stride = 4;
+  const bool all_round = !options.heading_hint_deg;
+  std::vector<double> scores(headings.size());
   for (std::size_t q = 0; q < positions.size(); ++q) {
     if (q % 16 == 0)
       progress.checkpoint(0.05 + 0.55 * q / positions.size(), "trying the spots around the click");
     const PlanProfile profile = plan_profile(walls, positions[q], width);
-    for (int j : headings) coarse.push_back({scorer.score(profile, j, coarse_stride), positions[q], j});
+    for (std::size_t h = 0; h < headings.size(); ++h)
+      scores[h] = scorer.score(profile, headings[h], coarse_stride);
+    const std::size_t n = headings.size();
+    for (std::size_t h = 0; h < n; ++h) {
+      const bool has_before = all_round || h > 0, has_after = all_round || h + 1 < n;
+      const double before = has_before ? scores[(h + n - 1) % n] : kInf;
+      const double after = has_after ? scores[(h + 1) % n] : kInf;
+      if (scores[h] <= before && scores[h] <= after) coarse.push_back({scores[h], positions[q], headings[h]});
+    }
   }
   std::sort(coarse.begin(), coarse.end(), [](const Pose& a, const Pose& b) { return a.score < b.score; });
 
@@ -267,9 +280,22 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
     if (distinct) seeds.push_back(c);
     if (static_cast<int>(seeds.size()) >= options.candidates) break;
   }
+  // The best few coarse poses away from the best one too, refined alike: the fit elsewhere, to tell a
+  // placement from one of several look-alike spots.
+  if (options.elsewhere_gap_m > 0) {
+    const std::size_t near_seeds = seeds.size();
+    for (const Pose& c : coarse) {
+      if ((c.p - seeds.front().p).norm() <= options.elsewhere_gap_m) continue;
+      bool distinct = true;  // look-alike spots elsewhere, each a gap from the others
+      for (std::size_t s = near_seeds; s < seeds.size(); ++s)
+        distinct = distinct && (c.p - seeds[s].p).norm() > options.elsewhere_gap_m;
+      if (distinct) seeds.push_back(c);
+      if (seeds.size() >= near_seeds + 6) break;
+    }
+  }
   const int fine_reach = static_cast<int>(std::ceil(options.coarse_step_m / options.fine_step_m));
-  Pose best{kInf, click, 0};
-  PlanProfile best_profile;
+  std::vector<Pose> refined(seeds.size(), Pose{kInf, click, 0});
+  std::vector<PlanProfile> refined_profile(seeds.size());
   for (std::size_t s = 0; s < seeds.size(); ++s) {
     progress.checkpoint(0.6 + 0.35 * s / seeds.size(), "refining the best spots");
     for (int i = -fine_reach; i <= fine_reach; ++i)
@@ -280,10 +306,15 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
         for (int j = seeds[s].j - 2 * coarse_heading; j <= seeds[s].j + 2 * coarse_heading; ++j) {
           const int jw = ((j % width) + width) % width;
           const double sc = scorer.score(profile, jw, 1);
-          if (sc < best.score) best = {sc, p, jw}, best_profile = profile;
+          if (sc < refined[s].score) refined[s] = {sc, p, jw}, refined_profile[s] = profile;
         }
       }
   }
+  std::size_t chosen = 0;
+  for (std::size_t s = 1; s < seeds.size(); ++s)
+    if (refined[s].score < refined[chosen].score) chosen = s;
+  const Pose best = refined[chosen];
+  const PlanProfile& best_profile = refined_profile[chosen];
   // Sub-column heading: a parabola through the best heading's neighbours.
   double j_refined = best.j;
   const double s_minus = scorer.score(best_profile, (best.j + width - 1) % width, 1);
@@ -304,6 +335,16 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
       out.runner_up_heading_deg = wrap_degrees(c.j * step * 180.0 / M_PI);
       break;
     }
+  out.elsewhere_score_px = kInf;
+  if (options.elsewhere_gap_m > 0) {
+    for (std::size_t s = 0; s < seeds.size(); ++s)
+      if ((refined[s].p - best.p).norm() > options.elsewhere_gap_m && std::isfinite(refined[s].score))
+        out.elsewhere.push_back({refined[s].p.x(), refined[s].p.y(),
+                                 wrap_degrees(refined[s].j * step * 180.0 / M_PI), refined[s].score});
+    std::sort(out.elsewhere.begin(), out.elsewhere.end(),
+              [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return a.w() < b.w(); });
+    if (!out.elsewhere.empty()) out.elsewhere_score_px = out.elsewhere.front().w();
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   char text[256];
   std::snprintf(text, sizeof text, "placed %.2f m from the click, heading %.1f deg; fit %.2f px (%s)",
@@ -398,7 +439,8 @@ cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x
   return out;
 }
 
-CameraPath path_with_still_placed(const CameraPath& path, int frame_index, const StillPlacement& placed) {
+CameraPath path_with_still_placed(const CameraPath& path, int frame_index, const StillPlacement& placed,
+                                  std::vector<PathPoint>* points) {
   const PathFrame* still = path.find_frame(frame_index);
   if (!still) throw Error("the path has no frame " + std::to_string(frame_index));
   const int piece = still->piece;
@@ -415,7 +457,16 @@ CameraPath path_with_still_placed(const CameraPath& path, int frame_index, const
   }
   if (!out.pieces.empty() && piece >= 0 && piece < static_cast<int>(out.pieces.size()))
     out.pieces[static_cast<std::size_t>(piece)].placed = true;
+  if (points) transform_piece_points(points, piece, turn, 1.0, shift);
   return out;
+}
+
+bool still_can_be_moved(const CameraPath& path, int frame_index) {
+  const PathFrame* f = path.find_frame(frame_index);
+  if (!f || path.piece_placed(f->piece) || f->piece < 0 || f->piece >= static_cast<int>(path.pieces.size()))
+    return false;
+  const PathPiece& piece = path.pieces[static_cast<std::size_t>(f->piece)];
+  return piece.first_index == piece.last_index || piece.scale_source == "camera_height";
 }
 
 }  // namespace plenopath

@@ -15,12 +15,15 @@
 // A second click may give the direction the still's centre looks (heading_hint_deg): for a room whose
 // walls look alike both ways round.
 #include <Eigen/Core>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
+#include "model/path_points.h"
 #include "processing/util/progress.h"
 
 namespace plenopath {
@@ -39,7 +42,10 @@ struct StillOnPlanOptions {
   double nadir_limit_deg = -65.0;          // below this elevation (the tripod) nothing is compared
   std::optional<double> heading_hint_deg;  // the author's second click: the still's centre looks this way
   double heading_hint_spread_deg = 30.0;   // ... give or take this
-  void check() const;                      // throws Error naming the bad field
+  // > 0: the best fit this far or farther from the chosen spot is reported too (elsewhere_score_px), to
+  // tell a placement from one of several look-alike spots (a corridor, repeated rooms).
+  double elsewhere_gap_m = 0.0;
+  void check() const;  // throws Error naming the bad field
 };
 
 struct StillPlacement {
@@ -49,6 +55,10 @@ struct StillPlacement {
   // both ways round (give a heading hint).
   double runner_up_heading_deg = 0.0;
   double runner_up_score_px = 0.0;
+  // With StillOnPlanOptions::elsewhere_gap_m: the best poses found that far or farther from the chosen one
+  // (x, y, heading in degrees, fit), best first, and the best of their fits (infinity when none).
+  std::vector<Eigen::Vector4d> elsewhere;
+  double elsewhere_score_px = std::numeric_limits<double>::infinity();
   int samples = 0;  // curve pixels compared at the chosen pose
   double seconds = 0.0;
   // One sentence for the author, e.g. "placed 0.18 m from the click, heading 32.4 deg; fit 1.9 px".
@@ -81,8 +91,13 @@ cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x
 
 // The path with the piece holding frame `frame_index` (a capture index) moved rigidly so that frame lands
 // on `placed`, and that piece marked placed: a still that connected to no other is a piece of one; a
-// group of a few stills unconnected to the rest moves as a whole. Throws Error when no frame has that
-// index.
-CameraPath path_with_still_placed(const CameraPath& path, int frame_index, const StillPlacement& placed);
+// group of a few stills unconnected to the rest moves as a whole; `points` of that piece (when given) move
+// with it. Throws Error when no frame has that index.
+CameraPath path_with_still_placed(const CameraPath& path, int frame_index, const StillPlacement& placed,
+                                  std::vector<PathPoint>* points = nullptr);
+
+// Whether a still may be placed by moving its piece: it is in an unplaced piece of its own, or of several
+// with a metric scale (a group without one must be split first: split_unscaled_groups).
+bool still_can_be_moved(const CameraPath& path, int frame_index);
 
 }  // namespace plenopath

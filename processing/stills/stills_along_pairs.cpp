@@ -22,27 +22,76 @@ void PairPlacementOptions::check() const {
     throw Error("PairPlacementOptions: ambiguity_gap_m must be > 0 and min_ambiguity_ratio >= 1");
 }
 
+int split_unscaled_groups(CameraPath* path, std::vector<PathPoint>* points) {
+  if (path->pieces.empty()) return 0;
+  const auto split = [&](const PathPiece& piece) {
+    return !piece.placed && piece.scale_source != "camera_height" && piece.last_index > piece.first_index;
+  };
+  // first_new[k]: the new number of old piece k's first still; later stills of a split piece follow it.
+  std::vector<int> first_new;
+  std::vector<PathPiece> pieces;
+  int count = 0;
+  for (const PathPiece& piece : path->pieces) {
+    first_new.push_back(static_cast<int>(pieces.size()));
+    if (!split(piece)) {
+      pieces.push_back(piece);
+      continue;
+    }
+    ++count;
+    bool first = true;
+    for (const PathFrame& f : path->frames) {
+      if (f.index < piece.first_index || f.index > piece.last_index) continue;
+      PathPiece one = piece;
+      one.first_index = one.last_index = f.index;
+      if (!first)
+        one.break_reason = "still " + std::to_string(f.index) +
+                           "'s group has no metric scale: its stills are placed one by one";
+      first = false;
+      pieces.push_back(one);
+    }
+  }
+  if (count == 0) return 0;
+  // The new piece of a frame of old piece k: its own when k was split, else k's.
+  std::vector<int> new_piece_of_frame(path->frames.size());
+  for (std::size_t i = 0; i < path->frames.size(); ++i) {
+    PathFrame& f = path->frames[i];
+    const int k = f.piece;
+    int n = first_new[static_cast<std::size_t>(k)];
+    if (split(path->pieces[static_cast<std::size_t>(k)])) {
+      while (pieces[static_cast<std::size_t>(n)].first_index != f.index) ++n;
+      f.flags |= kFramePieceStart;
+    }
+    f.piece = n;
+  }
+  if (points) {
+    for (PathPoint& p : *points) {
+      if (p.piece < 0 || p.piece >= static_cast<int>(path->pieces.size())) continue;
+      const int k = p.piece;
+      p.piece = first_new[static_cast<std::size_t>(k)];
+      if (!split(path->pieces[static_cast<std::size_t>(k)])) continue;
+      const PathFrame* f = path->find_frame(p.frame);
+      const PathPiece& old = path->pieces[static_cast<std::size_t>(k)];
+      if (f && f->index >= old.first_index && f->index <= old.last_index) p.piece = f->piece;
+    }
+  }
+  path->pieces = std::move(pieces);
+  return count;
+}
+
 CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<StillsPair>& pairs,
                                     const std::function<cv::Mat(int)>& read, const FloorPlan& plan,
-                                    const PairPlacementOptions& options, PairPlacementReport* report,
-                                    Progress& progress) {
+                                    std::vector<PathPoint>* points, const PairPlacementOptions& options,
+                                    PairPlacementReport* report, Progress& progress) {
   options.check();
   CameraPath out = path;
+  split_unscaled_groups(&out, points);
   PairPlacementReport local;
   PairPlacementReport& r = report ? *report : local;
   const auto placed = [&](int frame) {
     const PathFrame* f = out.find_frame(frame);
     return f && out.piece_placed(f->piece);
   };
-  // A still that may be moved: in an unplaced piece of its own, or of several at metric scale.
-  const auto movable = [&](int frame) {
-    const PathFrame* f = out.find_frame(frame);
-    if (!f || out.piece_placed(f->piece)) return false;
-    const CameraPath piece = out.piece_path(f->piece);
-    return piece.size() == 1 ||
-           (!out.pieces.empty() &&
-            out.pieces[static_cast<std::size_t>(f->piece)].scale_source == "camera_height");
-  };
+  const auto movable = [&](int frame) { return still_can_be_moved(out, frame); };
   const std::vector<PlanSegment> walls = plan.occluder_segments();
   std::set<int> tried;
   while (true) {
@@ -110,7 +159,7 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
       r.rejected.push_back(to);
       continue;
     }
-    out = path_with_still_placed(out, to, pose);
+    out = path_with_still_placed(out, to, pose, points);
     r.placed.push_back({to, from, pose, runner_up});
     tried.clear();  // a newly placed still may carry others
     tried.insert(to);

@@ -5,6 +5,11 @@
 // apart the two are. The plan can: from a placed still, the other lies somewhere along the pair's
 // direction, turned by the pair's turn, and what it sees of the walls (still_on_plan.h) says where along
 // it. Repeated until no more stills can be placed, so a corridor of such pairs is placed one by one.
+//
+// A group of stills whose scale is not metric (its floor was not measured) knows its directions but not
+// its distances: it is split into stills of their own first, and its pairs place them one by one like any
+// other. (The office stills scene: N1's two stills, 754 matches between them, were left off the plan as a
+// group without scale.)
 #include <functional>
 #include <opencv2/core.hpp>
 #include <string>
@@ -12,6 +17,7 @@
 
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
+#include "model/path_points.h"
 #include "processing/stills/still_on_plan.h"
 #include "processing/stills/stills.h"
 #include "processing/util/progress.h"
@@ -50,12 +56,20 @@ struct PairPlacementReport {
 };
 
 // `path` as the stills pipeline and registration left it (placed pieces on the plan); pairs from
-// StillsResult::pairs (a, b are capture indices). Only unplaced pieces of one still, or of several with a
-// metric scale, are moved (rigidly, path_with_still_placed). read(i) gives still i.
+// StillsResult::pairs (a, b are capture indices). Unplaced pieces without metric scale are split into
+// stills of their own (split_unscaled_groups); then unplaced pieces of one still, or of several with a
+// metric scale, are moved (rigidly, path_with_still_placed). read(i) gives still i. `points` (when given:
+// the path's points, PathPoint::piece naming its pieces) are renumbered and moved with their pieces.
 CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<StillsPair>& pairs,
                                     const std::function<cv::Mat(int)>& read, const FloorPlan& plan,
-                                    const PairPlacementOptions& options = {},
+                                    std::vector<PathPoint>* points, const PairPlacementOptions& options = {},
                                     PairPlacementReport* report = nullptr,
                                     Progress& progress = null_progress());
+
+// Every unplaced piece of more than one still whose scale is not metric (scale_source other than
+// "camera_height") becomes pieces of one still each, in their place in capture order; the pieces after
+// them are renumbered. `points` (when given) follow: a point goes to the piece of the still it is tied to
+// (PathPoint::frame), or of the group's first still. Returns how many pieces were split.
+int split_unscaled_groups(CameraPath* path, std::vector<PathPoint>* points = nullptr);
 
 }  // namespace plenopath

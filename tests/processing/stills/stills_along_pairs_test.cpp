@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "model/error.h"
@@ -72,7 +73,7 @@ TEST(StillsAlongPairs, AChainOfPairsWithoutLengthsIsPlacedByThePlan) {
                                    pair_from_truth(at(2), at(3), 2, 3, 5)};  // too weak
   PairPlacementReport report;
   const CameraPath placed = place_stills_along_pairs(
-      path, pairs, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, {}, &report);
+      path, pairs, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, nullptr, {}, &report);
   ASSERT_EQ(report.placed.size(), 2u);
   for (int i : {1, 2}) {
     const PathFrame* f = placed.find_frame(i);
@@ -94,9 +95,142 @@ TEST(StillsAlongPairs, AChainOfPairsWithoutLengthsIsPlacedByThePlan) {
   wrong.direction_deg += 90.0;
   PairPlacementReport wrong_report;
   const CameraPath left = place_stills_along_pairs(
-      path, {wrong}, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, {}, &wrong_report);
+      path, {wrong}, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, nullptr, {},
+      &wrong_report);
   EXPECT_TRUE(wrong_report.placed.empty());
   EXPECT_FALSE(left.piece_placed(left.find_frame(1)->piece));
+}
+
+// Split by hand: pieces [0] placed, [1 2] unplaced without metric scale, [3] unplaced at metric scale.
+TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsSplitIntoItsStills) {
+  CameraPath path;
+  const std::vector<std::pair<int, int>> piece_ranges = {{0, 0}, {1, 2}, {3, 3}};
+  const std::vector<std::string> sources = {"camera_height", "relative", "camera_height"};
+  for (std::size_t k = 0; k < piece_ranges.size(); ++k) {
+    PathPiece piece;
+    piece.first_index = piece_ranges[k].first;
+    piece.last_index = piece_ranges[k].second;
+    piece.placed = k == 0;
+    piece.scale_source = sources[k];
+    path.pieces.push_back(piece);
+    for (int i = piece.first_index; i <= piece.last_index; ++i) {
+      PathFrame f;
+      f.index = i;
+      f.piece = static_cast<int>(k);
+      f.x = i;
+      path.frames.push_back(f);
+    }
+  }
+  std::vector<PathPoint> points(4);
+  points[0].piece = 1, points[0].frame = 2;   // tied to still 2: goes with it
+  points[1].piece = 1, points[1].frame = 1;   // tied to still 1
+  points[2].piece = 1, points[2].frame = -1;  // not known: the group's first still
+  points[3].piece = 2, points[3].frame = 3;   // a later piece: renumbered
+  EXPECT_EQ(split_unscaled_groups(&path, &points), 1);
+  ASSERT_EQ(path.pieces.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(path.find_frame(i)->piece, i);
+    EXPECT_EQ(path.pieces[static_cast<std::size_t>(i)].first_index, i);
+    EXPECT_EQ(path.pieces[static_cast<std::size_t>(i)].last_index, i);
+    EXPECT_DOUBLE_EQ(path.find_frame(i)->x, i);  // nothing moved
+  }
+  EXPECT_TRUE(path.pieces[0].placed);
+  EXPECT_FALSE(path.pieces[1].placed || path.pieces[2].placed || path.pieces[3].placed);
+  EXPECT_EQ(path.pieces[2].scale_source, "relative");
+  EXPECT_TRUE(path.find_frame(2)->flags & kFramePieceStart);
+  EXPECT_EQ(points[0].piece, 2);
+  EXPECT_EQ(points[1].piece, 1);
+  EXPECT_EQ(points[2].piece, 1);
+  EXPECT_EQ(points[3].piece, 3);
+  // Nothing left to split; a path without pieces neither.
+  EXPECT_EQ(split_unscaled_groups(&path, &points), 0);
+  CameraPath plain;
+  plain.frames.resize(3);
+  EXPECT_EQ(split_unscaled_groups(&plain), 0);
+}
+
+// The office corridor again: still 0 placed, stills 1 and 2 a group whose distances are wrong (no metric
+// scale: 0.4 of the truth, in a frame of its own). Its stills are placed one by one along the pairs, each
+// within 5 cm and 0.5 deg of the render's truth, and a point tied to still 2 keeps its place as still 2
+// sees it.
+TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsPlacedStillByStill) {
+  const FloorPlan plan = make_office_sample_plan();
+  const SyntheticScene world = build_synthetic_scene(plan, SceneOptions{});
+  RenderOptions render;
+  render.width = 1440;
+  render.height = 720;
+  render.depth = false;
+  const std::vector<Eigen::Vector3d> truth = {{2.0, 7.0, 0.4}, {5.2, 7.1, 2.2}, {8.6, 6.9, -0.9}};
+  std::vector<cv::Mat> stills;
+  CameraPath path;
+  for (int k = 0; k < 2; ++k) {
+    PathPiece piece;
+    piece.first_index = k == 0 ? 0 : 1;
+    piece.last_index = k == 0 ? 0 : 2;
+    piece.placed = k == 0;
+    piece.scale_source = k == 0 ? "camera_height" : "relative";
+    path.pieces.push_back(piece);
+  }
+  const double group_turn = 1.1, group_scale = 0.4;
+  const Eigen::Vector2d group_shift(-3.0, 1.0);
+  const auto in_group_frame = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(group_scale * (Eigen::Rotation2Dd(group_turn) * (p - truth[1].head<2>())) +
+                           group_shift);
+  };
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    PathFrame f;
+    f.index = static_cast<int>(i);
+    f.x = truth[i].x();
+    f.y = truth[i].y();
+    f.heading = truth[i].z();
+    stills.push_back(render_panorama(world, f, render).rgb);
+    f.piece = i == 0 ? 0 : 1;
+    if (i > 0) {
+      const Eigen::Vector2d p = in_group_frame(truth[i].head<2>());
+      f.x = p.x();
+      f.y = p.y();
+      f.heading = truth[i].z() + group_turn;
+    }
+    path.frames.push_back(f);
+  }
+  // A point 2 m ahead of still 2 and 0.5 m to its left, as the group saw it (at the group's scale).
+  const Eigen::Vector2d ahead_left =
+      truth[2].head<2>() + Eigen::Rotation2Dd(truth[2].z()) * Eigen::Vector2d(2.0, 0.5);
+  std::vector<PathPoint> points(1);
+  points[0].piece = 1;
+  points[0].frame = 2;
+  points[0].position << in_group_frame(ahead_left), -0.3;
+  auto at = [&](int i) {
+    PathFrame f;
+    f.x = truth[i].x();
+    f.y = truth[i].y();
+    f.heading = truth[i].z();
+    return f;
+  };
+  const std::vector<StillsPair> pairs = {pair_from_truth(at(0), at(1), 0, 1, 60),
+                                         pair_from_truth(at(1), at(2), 1, 2, 50)};
+  PairPlacementReport report;
+  const CameraPath placed = place_stills_along_pairs(
+      path, pairs, [&](int i) { return stills[static_cast<std::size_t>(i)]; }, plan, &points, {}, &report);
+  ASSERT_EQ(report.placed.size(), 2u);
+  for (int i : {1, 2}) {
+    const PathFrame* f = placed.find_frame(i);
+    ASSERT_NE(f, nullptr);
+    EXPECT_TRUE(placed.piece_placed(f->piece)) << i;
+    const double position_error = (f->position() - truth[i].head<2>()).norm();
+    std::printf("still %d: %.3f m, %.2f deg\n", i, position_error,
+                heading_error_deg(f->heading, truth[i].z()));
+    EXPECT_LT(position_error, 0.05) << i;
+    EXPECT_LT(heading_error_deg(f->heading, truth[i].z()), 0.5) << i;
+  }
+  // The point moved rigidly with still 2 (the group's scale stays, as nothing measured it): 0.4 of its
+  // offset, in still 2's placed axes.
+  const PathFrame* still2 = placed.find_frame(2);
+  EXPECT_EQ(points[0].piece, still2->piece);
+  const Eigen::Vector2d expected =
+      still2->position() + Eigen::Rotation2Dd(still2->heading) * (group_scale * Eigen::Vector2d(2.0, 0.5));
+  EXPECT_LT((points[0].position.head<2>() - expected).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(points[0].position.z(), -0.3);
 }
 
 TEST(StillsAlongPairs, BadOptionsAreRefused) {
