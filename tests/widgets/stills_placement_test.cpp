@@ -92,8 +92,9 @@ TEST(StillsInTheStudio, ImportTrackAndPlaceTheUnconnectedStillWithTwoClicks) {
   ASSERT_EQ(tracked.size(), 7u);
   const PathFrame* lab = tracked.find_frame(4);
   ASSERT_NE(lab, nullptr);
-  std::printf("lab still: %s at (%.2f, %.2f), %.1f deg\n", tracked.piece_placed(lab->piece) ? "placed" : "unplaced",
-              lab->x, lab->y, lab->heading * 180 / M_PI);
+  std::printf("lab still: %s at (%.2f, %.2f), %.1f deg\n",
+              tracked.piece_placed(lab->piece) ? "placed" : "unplaced", lab->x, lab->y,
+              lab->heading * 180 / M_PI);
   ASSERT_FALSE(tracked.piece_placed(lab->piece)) << "the lab still connects to nothing: it stays unplaced";
   EXPECT_NE(outcome->summary.find("6 of 7 connected"), std::string::npos) << outcome->summary;
   // Every still is a keyframe, pinned.
