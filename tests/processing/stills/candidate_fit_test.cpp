@@ -10,32 +10,22 @@
 #include <cmath>
 
 #include "model/error.h"
-#include "rig/synthetic_camera.h"
+#include "tests/processing/stills/rendered_stills.h"
 
 namespace plenopath {
 namespace {
 
 TEST(CandidateFit, TheStillsPickTheTruePlacementOverRepeatedOnes) {
   const FloorPlan plan = make_office_sample_plan();
-  const SyntheticScene world = build_synthetic_scene(plan, SceneOptions{});
-  RenderOptions render;
-  render.width = 1440;
-  render.height = 720;
-  render.depth = false;
   const std::vector<Eigen::Vector3d> truth = {{2.6, 9.4, 0.3}, {4.6, 9.6, 2.0}, {3.0, 12.0, -1.2}};
-  std::vector<cv::Mat> stills;
+  const std::vector<cv::Mat> stills = test::render_stills_at(plan, truth);
   // The group's own frame: plan = true_transform.apply(own).
   Similarity2 true_transform;
   true_transform.rotation = 0.7;
   true_transform.translation = {3.0, 10.0};
   CameraPath path;
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f;
-    f.index = static_cast<int>(i);
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    stills.push_back(render_panorama(world, f, render).rgb);
+    PathFrame f = test::frame_at(static_cast<int>(i), truth[i]);
     const Eigen::Rotation2Dd back(-true_transform.rotation);
     const Eigen::Vector2d own = back * (f.position() - true_transform.translation);
     f.x = own.x();

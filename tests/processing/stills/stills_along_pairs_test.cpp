@@ -12,14 +12,13 @@
 #include <cmath>
 
 #include "model/error.h"
-#include "rig/synthetic_camera.h"
+#include "tests/processing/stills/rendered_stills.h"
 
 namespace plenopath {
 namespace {
 
-double heading_error_deg(double a, double b) {
-  return std::abs(std::remainder(a - b, 2 * M_PI)) * 180 / M_PI;
-}
+using test::frame_at;
+using test::heading_error_deg;
 
 StillsPair pair_from_truth(const PathFrame& a, const PathFrame& b, int ia, int ib, int inliers) {
   StillsPair p;
@@ -35,23 +34,13 @@ StillsPair pair_from_truth(const PathFrame& a, const PathFrame& b, int ia, int i
 
 TEST(StillsAlongPairs, AChainOfPairsWithoutLengthsIsPlacedByThePlan) {
   const FloorPlan plan = make_office_sample_plan();
-  const SyntheticScene world = build_synthetic_scene(plan, SceneOptions{});
-  RenderOptions render;
-  render.width = 1440;
-  render.height = 720;
-  render.depth = false;
   // The corridor (y 6.5-7.5 in the office sample) and the lobby.
   const std::vector<Eigen::Vector3d> truth = {
       {2.0, 7.0, 0.4}, {5.2, 7.1, 2.2}, {8.6, 6.9, -0.9}, {12.5, 4.0, 1.0}};
-  std::vector<cv::Mat> stills;
+  const std::vector<cv::Mat> stills = test::render_stills_at(plan, truth);
   CameraPath path;
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f;
-    f.index = static_cast<int>(i);
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    stills.push_back(render_panorama(world, f, render).rgb);
+    PathFrame f = frame_at(static_cast<int>(i), truth[i]);
     PathPiece piece;
     piece.first_index = piece.last_index = f.index;
     piece.placed = i == 0;
@@ -61,13 +50,7 @@ TEST(StillsAlongPairs, AChainOfPairsWithoutLengthsIsPlacedByThePlan) {
     if (i > 0) f.x = f.y = f.heading = 0.0;  // unplaced: own coordinates
     path.frames.push_back(f);
   }
-  auto at = [&](int i) {
-    PathFrame f;
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    return f;
-  };
+  auto at = [&](int i) { return frame_at(i, truth[i]); };
   std::vector<StillsPair> pairs = {pair_from_truth(at(0), at(1), 0, 1, 60),
                                    pair_from_truth(at(1), at(2), 1, 2, 50),
                                    pair_from_truth(at(2), at(3), 2, 3, 5)};  // too weak
@@ -155,13 +138,8 @@ TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsSplitIntoItsStills) {
 // sees it.
 TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsPlacedStillByStill) {
   const FloorPlan plan = make_office_sample_plan();
-  const SyntheticScene world = build_synthetic_scene(plan, SceneOptions{});
-  RenderOptions render;
-  render.width = 1440;
-  render.height = 720;
-  render.depth = false;
   const std::vector<Eigen::Vector3d> truth = {{2.0, 7.0, 0.4}, {5.2, 7.1, 2.2}, {8.6, 6.9, -0.9}};
-  std::vector<cv::Mat> stills;
+  const std::vector<cv::Mat> stills = test::render_stills_at(plan, truth);
   CameraPath path;
   for (int k = 0; k < 2; ++k) {
     PathPiece piece;
@@ -178,12 +156,7 @@ TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsPlacedStillByStill) {
                            group_shift);
   };
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f;
-    f.index = static_cast<int>(i);
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    stills.push_back(render_panorama(world, f, render).rgb);
+    PathFrame f = frame_at(static_cast<int>(i), truth[i]);
     f.piece = i == 0 ? 0 : 1;
     if (i > 0) {
       const Eigen::Vector2d p = in_group_frame(truth[i].head<2>());
@@ -200,13 +173,7 @@ TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsPlacedStillByStill) {
   points[0].piece = 1;
   points[0].frame = 2;
   points[0].position << in_group_frame(ahead_left), -0.3;
-  auto at = [&](int i) {
-    PathFrame f;
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    return f;
-  };
+  auto at = [&](int i) { return frame_at(i, truth[i]); };
   const std::vector<StillsPair> pairs = {pair_from_truth(at(0), at(1), 0, 1, 60),
                                          pair_from_truth(at(1), at(2), 1, 2, 50)};
   PairPlacementReport report;

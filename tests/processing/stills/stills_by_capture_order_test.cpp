@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "model/error.h"
-#include "rig/synthetic_camera.h"
+#include "tests/processing/stills/rendered_stills.h"
 
 namespace plenopath {
 namespace {
@@ -71,20 +71,11 @@ struct RenderedStills {
 };
 
 RenderedStills render_stills(const FloorPlan& plan, const std::vector<Eigen::Vector3d>& truth) {
-  const SyntheticScene world = build_synthetic_scene(plan, SceneOptions{});
-  RenderOptions render;
-  render.width = 1440;
-  render.height = 720;
-  render.depth = false;
   RenderedStills out;
   out.truth = truth;
+  out.images = test::render_stills_at(plan, truth);
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f;
-    f.index = static_cast<int>(i);
-    f.x = truth[i].x();
-    f.y = truth[i].y();
-    f.heading = truth[i].z();
-    out.images.push_back(render_panorama(world, f, render).rgb);
+    PathFrame f = test::frame_at(static_cast<int>(i), truth[i]);
     PathPiece piece;
     piece.first_index = piece.last_index = f.index;
     piece.placed = i == 0;
@@ -97,9 +88,7 @@ RenderedStills render_stills(const FloorPlan& plan, const std::vector<Eigen::Vec
   return out;
 }
 
-double heading_error_deg(double a, double b) {
-  return std::abs(std::remainder(a - b, 2 * M_PI)) * 180 / M_PI;
-}
+using test::heading_error_deg;
 
 // The office sample: round the open office (8 x 6.5 m, desks, a square pillar), 2-3 m apart, then out
 // through its door into the corridor, which looks alike all along.
