@@ -642,9 +642,10 @@ TEST(TourPlayer, SwapsARegionForAnImageSequence) {
   fs::remove_all(work);
   fs::create_directories(work);
   Project p = make_rendered_project(work / "capture", 12, 1024);
-  // Twelve frames at 8 fps, 1.5 s: red to blue, so consecutive frames differ.
+  // 24 frames at 8 fps, 3 s (long enough that a loaded machine draws some of it before the end): red to
+  // blue, so consecutive frames differ.
   const auto frames = FrameSource::from_generator(
-      12, 64, 48, 8.0, [](int k) { return cv::Mat(48, 64, CV_8UC3, cv::Scalar(20 * k, 40, 240 - 20 * k)); });
+      24, 64, 48, 8.0, [](int k) { return cv::Mat(48, 64, CV_8UC3, cv::Scalar(10 * k, 40, 240 - 10 * k)); });
   const std::string doors = (work / "doors.mp4").string();
   encode_video(*frames, doors);
   Hotspot& tv = p.hotspots[0];
