@@ -9,6 +9,7 @@
 #include <set>
 
 #include "model/error.h"
+#include "processing/plan/segment_grid.h"
 #include "processing/walk/walk_route.h"
 
 namespace plenopath {
@@ -33,17 +34,11 @@ std::vector<Eigen::Vector2d> spots_within_walking_reach(const FloorPlan& plan, c
   const std::vector<PlanSegment> all = plan.occluder_segments();
   // Only the walls near enough to matter.
   std::vector<PlanSegment> walls;
-  for (const PlanSegment& w : all) {
-    const Eigen::Vector2d d = w.b - w.a;
-    const double t = d.squaredNorm() > 0 ? std::clamp((from - w.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    if ((w.a + t * d - from).norm() <= reach + step) walls.push_back(w);
-  }
+  for (const PlanSegment& w : all)
+    if (distance_point_segment(from, w.a, w.b) <= reach + step) walls.push_back(w);
   const auto on_a_wall = [&](const Eigen::Vector2d& p) {
-    for (const PlanSegment& w : walls) {
-      const Eigen::Vector2d d = w.b - w.a;
-      const double t = d.squaredNorm() > 0 ? std::clamp((p - w.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((w.a + t * d - p).norm() < 1e-6) return true;
-    }
+    for (const PlanSegment& w : walls)
+      if (distance_point_segment(p, w.a, w.b) < 1e-6) return true;
     return false;
   };
   const int r = static_cast<int>(std::ceil(reach / step));
