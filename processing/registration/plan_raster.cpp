@@ -1,6 +1,6 @@
 // The plan's rasters for registration: walls with the nearest segment per cell (distance transform with
-// labels), free space (components of the non-wall cells, each classified once by the visibility index),
-// and their coarse versions for the global search.
+// labels), free space (components of the non-wall cells, the outer walls' openings closed, each classified
+// once by the visibility index), and their coarse versions for the global search.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -75,16 +75,27 @@ PlanRaster build_plan_raster(const FloorPlan& plan, double cell, double margin) 
     for (int c = 0; c < out.cols; ++c)
       out.nearest.at<int>(r, c) = segment_of_label[static_cast<std::size_t>(labels.at<int>(r, c))];
 
-  // Free space: each 4-connected component of non-wall cells is free, outside or an obstacle as a whole.
+  // Free space: each 4-connected component of non-wall cells is free, outside or an obstacle as a whole;
+  // the openings the visibility index closed (windows drawn as gaps) part rooms from the outside here too.
+  std::unique_ptr<VisibilityIndex> index;
+  try {
+    index = std::make_unique<VisibilityIndex>(plan);
+  } catch (const Error&) {
+    index.reset();  // enclosed components count as free
+  }
+  cv::Mat open = not_wall.clone();
+  if (index)
+    for (const PlanSegment& s : index->closed_openings())
+      cv::line(open, pixel(s.a), pixel(s.b), cv::Scalar(0), 1, cv::LINE_8);
   cv::Mat components;
-  const int count = cv::connectedComponents(not_wall, components, 4, CV_32S);
+  const int count = cv::connectedComponents(open, components, 4, CV_32S);
   std::vector<char> touches_border(count, 0);
   std::vector<float> deepest(count, -1.0f);
   std::vector<cv::Point> deepest_at(count);
   for (int r = 0; r < out.rows; ++r)
     for (int c = 0; c < out.cols; ++c) {
       const int k = components.at<int>(r, c);
-      if (ids.at<int>(r, c) != 0) continue;
+      if (!open.at<std::uint8_t>(r, c)) continue;
       if (r == 0 || c == 0 || r == out.rows - 1 || c == out.cols - 1) touches_border[k] = 1;
       const float d = out.distance.at<float>(r, c);
       if (d > deepest[k]) {
@@ -92,12 +103,6 @@ PlanRaster build_plan_raster(const FloorPlan& plan, double cell, double margin) 
         deepest_at[k] = {c, r};
       }
     }
-  std::unique_ptr<VisibilityIndex> index;
-  try {
-    index = std::make_unique<VisibilityIndex>(plan);
-  } catch (const Error&) {
-    index.reset();  // enclosed components count as free
-  }
   std::vector<char> is_free(count, 0);
   for (int k = 0; k < count; ++k) {
     if (touches_border[k] || deepest[k] < 0) continue;
@@ -112,7 +117,8 @@ PlanRaster build_plan_raster(const FloorPlan& plan, double cell, double margin) 
   out.free.create(out.rows, out.cols, CV_8U);
   for (int r = 0; r < out.rows; ++r)
     for (int c = 0; c < out.cols; ++c)
-      out.free.at<std::uint8_t>(r, c) = ids.at<int>(r, c) == 0 && is_free[components.at<int>(r, c)] ? 1 : 0;
+      out.free.at<std::uint8_t>(r, c) =
+          open.at<std::uint8_t>(r, c) && is_free[components.at<int>(r, c)] ? 1 : 0;
   return out;
 }
 

@@ -39,6 +39,8 @@ void VisibilityOptions::check() const {
     fail("dangling_wall_thickness_m must be in (0, 0.5] m");
   if (!(event_merge_distance_m >= 0.0 && event_merge_distance_m <= 0.1))
     fail("event_merge_distance_m must be in [0, 0.1] m");
+  if (!(close_openings_up_to_m >= 0.0 && close_openings_up_to_m <= 50.0))
+    fail("close_openings_up_to_m must be in [0, 50] m");
   if (threads < 0) fail("threads must be >= 0");
   if (fast_area_max_steps < 0) fail("fast_area_max_steps must be >= 0 (0 = automatic)");
 }

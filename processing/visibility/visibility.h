@@ -72,6 +72,10 @@ struct VisibilityOptions {
   VisibilityAlgorithm algorithm = VisibilityAlgorithm::triangular_expansion;
   // Endpoints closer than this (metres) are merged before the arrangement is built.
   double snap_tolerance_m = 0.001;
+  // Gaps in the outer walls up to this wide (metres; windows drawn as gaps, an open entrance) are closed by
+  // a segment that blocks sight, so the rooms behind them are inside the building (exterior_openings.h).
+  // 0 = leave every gap open.
+  double close_openings_up_to_m = 3.0;
   // Width (metres) of the thin rectangle that replaces a dangling wall.
   double dangling_wall_thickness_m = 0.01;
   // Events closer than this along the path (metres) are merged into one.
@@ -139,6 +143,8 @@ class VisibilityIndex {
 
   // The segments CGAL sees after snapping and thickening (for display and for independent test oracles).
   std::vector<PlanSegment> effective_segments() const;
+  // The segments that closed the outer walls' openings (part of effective_segments()).
+  std::vector<PlanSegment> closed_openings() const;
   // The arrangement's vertices (the plan vertices that events refer to).
   std::vector<Eigen::Vector2d> vertices() const;
 

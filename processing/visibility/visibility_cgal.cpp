@@ -22,6 +22,7 @@
 #include <unordered_map>
 
 #include "model/error.h"
+#include "processing/plan/exterior_openings.h"
 #include "processing/plan/segment_grid.h"
 #include "processing/visibility/visibility.h"
 #include "processing/visibility/visibility_expansion.h"
@@ -112,6 +113,7 @@ struct VisibilityIndex::Impl {
   VisibilityOptions options;
   Arrangement arr;
   std::unique_ptr<Locator> locator;
+  std::vector<Segment2> closings;           // the segments that close the outer walls' openings
   std::vector<Segment2> edges;              // the arrangement's edges in doubles
   std::unique_ptr<SegmentGrid> edge_grid;   // over `edges`
   std::unique_ptr<SegmentGrid> thick_grid;  // over the centre lines of thickened dangling walls
@@ -160,6 +162,11 @@ void VisibilityIndex::Impl::build(const FloorPlan& plan) {
                 (plan.source_file.empty() ? "" : " " + plan.source_file) +
                 " has no occluding segments (choose the wall layers)");
   half_thickness = options.dangling_wall_thickness_m * 0.5;
+  // Windows and entrances drawn as gaps would make the rooms behind them part of the outside.
+  ExteriorOpeningOptions openings;
+  openings.max_opening_m = options.close_openings_up_to_m;
+  closings = exterior_openings(walls, openings);
+  walls.insert(walls.end(), closings.begin(), closings.end());
 
   // Dangling walls (antennas: both sides of the edge are the same face) become thin rectangles, so every
   // edge CGAL's visibility sees bounds two different faces. Repeat in case thickening made new antennas.
@@ -244,10 +251,11 @@ void cycle_area_and_length(Circulator first, double* area, double* length) {
   *length = l;
 }
 
-// A face with holes whose mean width (2 area / perimeter) is under a wall's thickness is the body of a
-// wall drawn with two lines (an outer wall whose inner line is a loop of its own), not a room.
+// A face whose mean width (2 area / perimeter) is under a wall's thickness is the body of a wall, not a
+// room: with holes, a wall drawn with two lines (an outer wall whose inner line is a loop of its own);
+// without, a wall drawn as a closed outline, or the reveal between an opening's inner and outer closing.
 bool is_wall_body(Arrangement::Face_const_handle f, double max_wall_thickness) {
-  if (!f->has_outer_ccb() || f->inner_ccbs_begin() == f->inner_ccbs_end()) return false;
+  if (!f->has_outer_ccb()) return false;
   double area = 0, perimeter = 0, a = 0, l = 0;
   cycle_area_and_length(f->outer_ccb(), &a, &l);
   area += std::abs(a);
@@ -265,6 +273,8 @@ bool is_wall_body(Arrangement::Face_const_handle f, double max_wall_thickness) {
 void VisibilityIndex::Impl::classify_faces() {
   // Walls thicker than this are not drawn as two lines (60 cm: thick masonry).
   constexpr double kMaxWallThickness = 0.6;
+  // A closed outline this thin (mean width) is a wall's body; a 1 m x 1 m closet (0.5) is still a room.
+  constexpr double kMaxSolidWallThickness = 0.5;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) f->set_data(kUnset);
   std::vector<Arrangement::Face_handle> queue;
   auto top = arr.unbounded_face();
@@ -272,7 +282,9 @@ void VisibilityIndex::Impl::classify_faces() {
   queue.push_back(top);
   for (std::size_t qi = 0; qi < queue.size(); ++qi) {
     auto g = queue[qi];
-    if (g->data() == kFree && is_wall_body(g, kMaxWallThickness)) g->set_data(kWallInterior);
+    const bool has_holes = g->inner_ccbs_begin() != g->inner_ccbs_end();
+    if (g->data() == kFree && is_wall_body(g, has_holes ? kMaxWallThickness : kMaxSolidWallThickness))
+      g->set_data(kWallInterior);
     // Inside a room: pillars; inside the outside or inside a wall's body: rooms.
     const int inner_kind = (g->data() == kFree) ? kObstacle : kFree;
     for (auto hole = g->inner_ccbs_begin(); hole != g->inner_ccbs_end(); ++hole) {
@@ -408,6 +420,18 @@ double VisibilityIndex::exact_envelope_area(const Eigen::Vector2d& p) const {
     twice += a.x() * b.y() - a.y() * b.x();
   }
   return 0.5 * std::abs(twice);
+}
+
+std::vector<PlanSegment> VisibilityIndex::closed_openings() const {
+  std::vector<PlanSegment> out;
+  for (const auto& s : impl_->closings) {
+    PlanSegment p;
+    p.a = s.a;
+    p.b = s.b;
+    p.occluder = true;
+    out.push_back(p);
+  }
+  return out;
 }
 
 std::vector<PlanSegment> VisibilityIndex::effective_segments() const {

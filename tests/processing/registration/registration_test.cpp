@@ -92,6 +92,46 @@ TEST(Registration, RecoversAKnownSimilarityFromNoisyWallPoints) {
   }
 }
 
+// A gallery hall: walls drawn as closed outlines 0.3 m thick, four 2 m windows drawn as gaps in the south
+// wall, a row of square columns. Open to the outside through its windows, yet the hall is free space and
+// the walls' bodies and the columns are not.
+TEST(Registration, AHallWithWindowGapsIsFreeSpaceAndItsWallBodiesAreNot) {
+  FloorPlan plan;
+  plan.layers = {{"WALLS", 7, true, true, 0}};
+  auto outline = [&](const std::vector<Eigen::Vector2d>& c) {
+    for (std::size_t k = 0; k < c.size(); ++k) wall(&plan, c[k], c[(k + 1) % c.size()]);
+  };
+  for (double x0 : {-0.15, 3.0, 6.5, 10.0})  // south wall pieces between windows x 1.0-3.0, 4.5-6.5, ...
+    outline({{x0, -0.15},
+             {x0 == -0.15 ? 1.0 : x0 + 1.5, -0.15},
+             {x0 == -0.15 ? 1.0 : x0 + 1.5, 0.15},
+             {x0, 0.15}});
+  outline({{11.5, -0.15}, {14.15, -0.15}, {14.15, 0.15}, {11.5, 0.15}});
+  outline({{13.85, -0.15}, {14.15, -0.15}, {14.15, 8.15}, {13.85, 8.15}});
+  outline({{-0.15, 7.85}, {14.15, 7.85}, {14.15, 8.15}, {-0.15, 8.15}});
+  outline({{-0.15, -0.15}, {0.15, -0.15}, {0.15, 8.15}, {-0.15, 8.15}});
+  for (double x : {3.5, 7.0, 10.5})
+    outline({{x - 0.25, 3.75}, {x + 0.25, 3.75}, {x + 0.25, 4.25}, {x - 0.25, 4.25}});
+  std::vector<Eigen::Vector2d> walk;  // round the columns
+  for (double x = 1.5; x < 12.5; x += 0.1) walk.push_back({x, 2.0 + 0.2 * std::sin(x)});
+  for (double y = 2.0; y < 6.0; y += 0.1) walk.push_back({12.5, y});
+  for (double x = 12.5; x > 1.5; x -= 0.1) walk.push_back({x, 6.0});
+  Similarity2 truth;
+  truth.rotation = -71.0 * kDeg;
+  truth.scale = 0.985;
+  truth.translation = {-3.0, 12.0};
+  const SyntheticPiece piece = synthesise(plan, walk, truth, 21);
+  const RegistrationResult r = register_on_plan(piece.path, piece.points, plan);
+  ASSERT_EQ(r.pieces.size(), 1u);
+  const PieceRegistration& p = r.pieces[0];
+  ASSERT_TRUE(p.ok) << p.message;
+  std::printf("%s\n", describe(p).c_str());
+  const RegistrationCandidate& best = p.candidates[0];
+  EXPECT_DOUBLE_EQ(best.free_share, 1.0);
+  EXPECT_LT(position_error(best.transform, truth, piece.path), 0.02);
+  EXPECT_NEAR(std::remainder(best.transform.rotation - truth.rotation, 2 * M_PI), 0.0, 0.1 * kDeg);
+}
+
 TEST(Registration, ASymmetricRoomGivesTwoNearEqualCandidatesAndOneAnchorPicks) {
   const FloorPlan plan = symmetric_room();
   std::vector<Eigen::Vector2d> walk;
