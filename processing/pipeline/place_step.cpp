@@ -1,5 +1,6 @@
 #include "processing/pipeline/place_step.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "model/error.h"
@@ -8,6 +9,9 @@
 #include "processing/pipeline/visibility_step.h"
 
 namespace plenopath::pipeline {
+
+// A group of stills registers on the plan by its own points from this many stills up.
+constexpr long kMinStillsToRegister = 3;
 
 void PlaceStepOptions::check() const {
   require_option(camera_height_m >= 0, "PlaceStepOptions.camera_height_m", "must be >= 0 (0: the capture's)",
@@ -50,6 +54,7 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   RegistrationOptions registration;
   registration.camera_height_m =
       options.camera_height_m > 0 ? options.camera_height_m : project.capture.camera_height_m;
+  const bool stills = project.capture.stills && project.capture.kind == CaptureKind::kImageFolder;
   registration.check();
   PlaceStepResult out;
   PlacementChoices& choices = out.choices;
@@ -60,7 +65,6 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   choices.refine_on_walls = options.refine_on_walls;
   SubProgress search(progress, 0.0, 0.8, "registration");
   choices.result = register_on_plan(project.path, project.path_points, project.plan, registration, search);
-  const bool stills = project.capture.stills && project.capture.kind == CaptureKind::kImageFolder;
   choices.unplace_failed = stills;
   if (stills) {
     // Repeated rooms fit a group's points alike: what the stills see picks among the placements.
@@ -72,6 +76,17 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
         &choices.result, project.path,
         [&](int index) { return source->read(project.capture.kept_of_frame_index(index)); }, project.plan,
         fit_options, fitting);
+    // Two stills measure their points along one baseline: a turn of their pair is not seen in the points.
+    // Such a group is placed through its pairs to placed stills, or by capture order, instead.
+    for (PieceRegistration& piece : choices.result.pieces) {
+      const long stills_in_piece = std::count_if(project.path.frames.begin(), project.path.frames.end(),
+                                                 [&](const PathFrame& f) { return f.piece == piece.piece; });
+      if (piece.ok && stills_in_piece < kMinStillsToRegister) {
+        piece.ok = false;
+        piece.message = "a group of " + std::to_string(stills_in_piece) +
+                        " stills is placed by its pairs to placed stills, not by its points alone";
+      }
+    }
   }
 
   const int pieces = static_cast<int>(choices.result.pieces.size());
