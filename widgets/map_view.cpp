@@ -29,6 +29,7 @@
 
 #include "model/error.h"
 #include "processing/anchors/anchor_refinement.h"
+#include "processing/plan/exterior_openings.h"
 #include "processing/walk/walk_route.h"
 #include "widgets/anchor_commands.h"
 #include "widgets/anchor_editor.h"
@@ -212,6 +213,8 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   cone_actor_ = make_actor(cone, 1.0, 0.55);
   plan_actor_ = make_actor(grey, 1.5);
   occluder_actor_ = make_actor(dark, 3.5);
+  const double glass[3] = {0.2, 0.55, 0.95};
+  opening_actor_ = make_actor(glass, 3.0, 0.9);
   critical_actor_ = make_actor(amber, 1.0, 0.55);
   path_actor_ = make_actor(grey, 4.0);
   keyframe_actor_ = make_actor(red, 1.0);
@@ -232,10 +235,10 @@ MapView::MapView(ProjectDocument& document, QWidget* parent)
   anchor_actor_->GetProperty()->SetPointSize(13.0f);  // squares: distinct from the round keyframes
   anchor_core_actor_ = make_actor(white, 1.0);
   anchor_core_actor_->GetProperty()->SetPointSize(5.0f);
-  for (vtkActor* a :
-       {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
-        critical_actor_.Get(), ghost_path_actor_.Get(), path_actor_.Get(), keyframe_actor_.Get(),
-        residual_actor_.Get(), current_actor_.Get(), anchor_actor_.Get(), anchor_core_actor_.Get()})
+  for (vtkActor* a : {envelope_actor_.Get(), cone_actor_.Get(), plan_actor_.Get(), occluder_actor_.Get(),
+                      opening_actor_.Get(), critical_actor_.Get(), ghost_path_actor_.Get(), path_actor_.Get(),
+                      keyframe_actor_.Get(), residual_actor_.Get(), current_actor_.Get(), anchor_actor_.Get(),
+                      anchor_core_actor_.Get()})
     renderer_->AddActor(a);
 
   hotspot_actor_ = make_hotspot_marker_actor();  // hotspots at their 3-D position
@@ -368,6 +371,30 @@ void MapView::rebuild_plan() {
   occluders->SetLines(occ_lines);
   set_polydata(plan_actor_, plan);
   set_polydata(occluder_actor_, occluders);
+
+  // The gaps in the outer walls that visibility and registration close (windows drawn as gaps): drawn as
+  // glass so the author sees what the studio assumed. Computed once per plan, not per visibility change.
+  if (openings_revision_ != document_.plan_revision()) {
+    openings_revision_ = document_.plan_revision();
+    std::vector<Segment2> walls;
+    for (const PlanSegment& s : p.plan.occluder_segments()) walls.push_back({s.a, s.b});
+    try {
+      openings_ = exterior_openings(walls);
+    } catch (const Error&) {
+      openings_.clear();  // a plan too odd to rasterise: nothing drawn, visibility says what is wrong
+    }
+  }
+  vtkNew<vtkPoints> opening_points;
+  vtkNew<vtkCellArray> opening_lines;
+  for (const Segment2& s : openings_) {
+    const vtkIdType ids[2] = {opening_points->InsertNextPoint(s.a.x(), s.a.y(), kPlanZ),
+                              opening_points->InsertNextPoint(s.b.x(), s.b.y(), kPlanZ)};
+    opening_lines->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> openings;
+  openings->SetPoints(opening_points);
+  openings->SetLines(opening_lines);
+  set_polydata(opening_actor_, openings);
 
   vtkNew<vtkPoints> cpoints;
   vtkNew<vtkCellArray> clines;

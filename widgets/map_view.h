@@ -33,6 +33,7 @@
 #include "model/anchors.h"
 #include "model/camera_path.h"
 #include "model/floor_plan.h"
+#include "processing/plan/segment_grid.h"
 
 class QTimer;
 class vtkActor;
@@ -168,6 +169,9 @@ class MapView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkActor> plan_actor_;
   vtkSmartPointer<vtkActor> occluder_actor_;
+  vtkSmartPointer<vtkActor> opening_actor_;  // the outer walls' gaps visibility closes (glass blue)
+  std::vector<Segment2> openings_;           // of the plan at openings_revision_
+  unsigned openings_revision_ = ~0u;
   vtkSmartPointer<vtkActor> critical_actor_;
   vtkSmartPointer<vtkActor> path_actor_;
   vtkSmartPointer<vtkActor> keyframe_actor_;
