@@ -49,10 +49,10 @@ OpeningRaster rasterize(const std::vector<Segment2>& walls, const ExteriorOpenin
   }
   const double radius = 0.5 * options.max_opening_m;
   OpeningRaster out;
-  // At most 4000 cells a side (16 M cells): a 200 m plan runs at 5 cm, larger ones coarser.
+  // At most 2000 cells a side (4 M cells): a 100 m plan runs at 5 cm, larger ones coarser.
   const double margin = options.max_opening_m + 0.5;
   const double extent = (hi - lo).maxCoeff() + 2 * margin;
-  out.cell = std::max(options.cell_m, extent / 4000.0);
+  out.cell = std::max(options.cell_m, extent / 2000.0);
   out.origin = lo - Eigen::Vector2d::Constant(margin);
   const int cols = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / out.cell)) + 1;
   const int rows = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / out.cell)) + 1;
@@ -190,25 +190,43 @@ std::vector<Segment2> exterior_openings(const std::vector<Segment2>& walls,
     double length;
     int a, b;
   };
-  std::vector<Candidate> candidates;
+  // Each corner pairs with its nearest corners only: an opening's far corner is among them, and a drawing
+  // of densely tessellated curves does not make the pairs grow as the square of its corners.
+  constexpr std::size_t kPairsPerCorner = 24;
+  std::vector<Candidate> candidates, nearest;
   for (std::size_t i = 0; i < corners.size(); ++i) {
+    nearest.clear();
     const auto [bx, by] = bucket_of(corners[i]);
     for (std::int64_t dy = -1; dy <= 1; ++dy)
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
         auto it = corner_cells.find(grid_cell_key(bx + dx, by + dy));
         if (it == corner_cells.end()) continue;
         for (int j : it->second) {
-          if (static_cast<std::size_t>(j) <= i) continue;
+          if (static_cast<std::size_t>(j) == i) continue;
           const double length = (corners[static_cast<std::size_t>(j)] - corners[i]).norm();
-          if (length <= options.max_opening_m) candidates.push_back({length, static_cast<int>(i), j});
+          if (length <= options.max_opening_m)
+            nearest.push_back({length, std::min(static_cast<int>(i), j), std::max(static_cast<int>(i), j)});
         }
       }
+    const auto by_length = [](const Candidate& x, const Candidate& y) {
+      return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+    };
+    if (nearest.size() > kPairsPerCorner) {
+      std::nth_element(nearest.begin(), nearest.begin() + kPairsPerCorner, nearest.end(), by_length);
+      nearest.resize(kPairsPerCorner);
+    }
+    candidates.insert(candidates.end(), nearest.begin(), nearest.end());
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
     return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
   });
+  candidates.erase(
+      std::unique(candidates.begin(), candidates.end(),
+                  [](const Candidate& x, const Candidate& y) { return x.a == y.a && x.b == y.b; }),
+      candidates.end());
 
-  std::vector<char> closed(corners.size(), 0);  // a corner some accepted closing ends at
+  std::vector<char> closed(corners.size(), 0);                       // a corner some accepted closing ends at
+  std::unordered_map<std::int64_t, std::vector<int>> closing_cells;  // accepted closings by their middle
   for (const Candidate& c : candidates) {
     // Both ends on closings already (the diagonal of an opening whose inner and outer lines are taken).
     if (closed[static_cast<std::size_t>(c.a)] && closed[static_cast<std::size_t>(c.b)]) continue;
@@ -226,10 +244,20 @@ std::vector<Segment2> exterior_openings(const std::vector<Segment2>& walls,
     bool crosses = false;
     for (int k : grid.along(a, b))
       if (properly_crosses(a, b, grid.segments()[static_cast<std::size_t>(k)])) crosses = true;
-    // An X with a closing already taken (the two diagonals of one opening): keep the shorter.
-    for (const Segment2& s : out)
-      if (properly_crosses(a, b, s) && properly_crosses(s.a, s.b, {a, b})) crosses = true;
+    // An X with a closing already taken (the two diagonals of one opening): keep the shorter. Closings
+    // are at most max_opening_m long, so one that crosses has its middle within that of this one's.
+    const auto [mx, my] = bucket_of(mid);
+    for (std::int64_t dy = -1; dy <= 1 && !crosses; ++dy)
+      for (std::int64_t dx = -1; dx <= 1 && !crosses; ++dx) {
+        auto it = closing_cells.find(grid_cell_key(mx + dx, my + dy));
+        if (it == closing_cells.end()) continue;
+        for (int k : it->second) {
+          const Segment2& s = out[static_cast<std::size_t>(k)];
+          if (properly_crosses(a, b, s) && properly_crosses(s.a, s.b, {a, b})) crosses = true;
+        }
+      }
     if (crosses) continue;
+    closing_cells[grid_cell_key(mx, my)].push_back(static_cast<int>(out.size()));
     out.push_back({a, b});
     closed[static_cast<std::size_t>(c.a)] = closed[static_cast<std::size_t>(c.b)] = 1;
   }
