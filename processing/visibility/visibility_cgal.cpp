@@ -422,9 +422,13 @@ double VisibilityIndex::exact_envelope_area(const Eigen::Vector2d& p) const {
   return 0.5 * std::abs(twice);
 }
 
-std::vector<PlanSegment> VisibilityIndex::closed_openings() const {
+namespace {
+
+// Segments as sight-blocking plan segments (for display and test oracles).
+std::vector<PlanSegment> as_occluders(const std::vector<Segment2>& segments) {
   std::vector<PlanSegment> out;
-  for (const auto& s : impl_->closings) {
+  out.reserve(segments.size());
+  for (const auto& s : segments) {
     PlanSegment p;
     p.a = s.a;
     p.b = s.b;
@@ -434,18 +438,11 @@ std::vector<PlanSegment> VisibilityIndex::closed_openings() const {
   return out;
 }
 
-std::vector<PlanSegment> VisibilityIndex::effective_segments() const {
-  std::vector<PlanSegment> out;
-  out.reserve(impl_->edges.size());
-  for (const auto& s : impl_->edges) {
-    PlanSegment p;
-    p.a = s.a;
-    p.b = s.b;
-    p.occluder = true;
-    out.push_back(p);
-  }
-  return out;
-}
+}  // namespace
+
+std::vector<PlanSegment> VisibilityIndex::closed_openings() const { return as_occluders(impl_->closings); }
+
+std::vector<PlanSegment> VisibilityIndex::effective_segments() const { return as_occluders(impl_->edges); }
 
 std::vector<Eigen::Vector2d> VisibilityIndex::vertices() const {
   std::vector<Eigen::Vector2d> out;

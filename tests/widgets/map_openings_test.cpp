@@ -12,26 +12,18 @@
 namespace plenopath {
 namespace {
 
-using Vec = Eigen::Vector2d;
-
-void add_thick_wall(FloorPlan* plan, Vec a, Vec b, double t) {
-  const Vec d = (b - a).normalized(), n(-d.y(), d.x());
-  test::add_polygon(plan, {a - d * t / 2 - n * t / 2, b + d * t / 2 - n * t / 2, b + d * t / 2 + n * t / 2,
-                           a - d * t / 2 + n * t / 2});
-}
-
 bool is_glass_colour(QRgb c) { return qBlue(c) > 180 && qRed(c) < 120 && qGreen(c) > 90 && qGreen(c) < 190; }
 
 TEST(MapOpenings, WindowsDrawnAsGapsAreShownClosed) {
   Project project;
   project.plan.layers = {{"WALLS", 7, true, true, 0}};
   // A 10 x 6 m hall, walls 0.2 m thick; windows x 2.2-3.8 and 6.2-7.8 in the south wall.
-  add_thick_wall(&project.plan, {0, 0}, {2.1, 0}, 0.2);
-  add_thick_wall(&project.plan, {3.9, 0}, {6.1, 0}, 0.2);
-  add_thick_wall(&project.plan, {7.9, 0}, {10, 0}, 0.2);
-  add_thick_wall(&project.plan, {10, 0}, {10, 6}, 0.2);
-  add_thick_wall(&project.plan, {10, 6}, {0, 6}, 0.2);
-  add_thick_wall(&project.plan, {0, 6}, {0, 0}, 0.2);
+  test::add_thick_wall(&project.plan, {0, 0}, {2.1, 0}, 0.2);
+  test::add_thick_wall(&project.plan, {3.9, 0}, {6.1, 0}, 0.2);
+  test::add_thick_wall(&project.plan, {7.9, 0}, {10, 0}, 0.2);
+  test::add_thick_wall(&project.plan, {10, 0}, {10, 6}, 0.2);
+  test::add_thick_wall(&project.plan, {10, 6}, {0, 6}, 0.2);
+  test::add_thick_wall(&project.plan, {0, 6}, {0, 0}, 0.2);
   test::TestStudio s;
   s.window.document().reset(project, QString());
   widgets::MapView* map = s.window.map_view();

@@ -34,6 +34,14 @@ inline void add_rectangle(FloorPlan* plan, Eigen::Vector2d c, double w, double h
                      c + r * V(-w / 2, h / 2)});
 }
 
+// A wall of thickness t round the centre line a-b, extended by t/2 at both ends: a closed outline, as the
+// POV-Ray scenes' plans and many architects' plans draw walls.
+inline void add_thick_wall(FloorPlan* plan, Eigen::Vector2d a, Eigen::Vector2d b, double t) {
+  const Eigen::Vector2d d = (b - a).normalized(), n(-d.y(), d.x());
+  add_polygon(plan, {a - d * t / 2 - n * t / 2, b + d * t / 2 - n * t / 2, b + d * t / 2 + n * t / 2,
+                     a - d * t / 2 + n * t / 2});
+}
+
 // Distance along the ray from p at `angle` (radians from +X) to the first wall, or infinity.
 inline double cast_ray(const std::vector<PlanSegment>& walls, const Eigen::Vector2d& p, double angle) {
   const Eigen::Vector2d d(std::cos(angle), std::sin(angle));

@@ -11,24 +11,17 @@ namespace {
 
 using Vec = Eigen::Vector2d;
 
-// A wall of thickness t round the centre line a-b, extended by t/2 at both ends (a closed outline).
-void add_thick_wall(FloorPlan* plan, Vec a, Vec b, double t) {
-  const Vec d = (b - a).normalized(), n(-d.y(), d.x());
-  test::add_polygon(plan, {a - d * t / 2 - n * t / 2, b + d * t / 2 - n * t / 2, b + d * t / 2 + n * t / 2,
-                           a - d * t / 2 + n * t / 2});
-}
-
 // 10 x 6 m, walls 0.2 m thick, two 1.6 m windows in the south wall (x 2.2-3.8 and 6.2-7.8), a 0.4 m
 // square column at (5, 3).
 FloorPlan hall() {
   FloorPlan plan;
   plan.layers = {{"WALLS", 7, true, true, 0}};
-  add_thick_wall(&plan, {0, 0}, {2.1, 0}, 0.2);
-  add_thick_wall(&plan, {3.9, 0}, {6.1, 0}, 0.2);
-  add_thick_wall(&plan, {7.9, 0}, {10, 0}, 0.2);
-  add_thick_wall(&plan, {10, 0}, {10, 6}, 0.2);
-  add_thick_wall(&plan, {10, 6}, {0, 6}, 0.2);
-  add_thick_wall(&plan, {0, 6}, {0, 0}, 0.2);
+  test::add_thick_wall(&plan, {0, 0}, {2.1, 0}, 0.2);
+  test::add_thick_wall(&plan, {3.9, 0}, {6.1, 0}, 0.2);
+  test::add_thick_wall(&plan, {7.9, 0}, {10, 0}, 0.2);
+  test::add_thick_wall(&plan, {10, 0}, {10, 6}, 0.2);
+  test::add_thick_wall(&plan, {10, 6}, {0, 6}, 0.2);
+  test::add_thick_wall(&plan, {0, 6}, {0, 0}, 0.2);
   test::add_rectangle(&plan, {5, 3}, 0.4, 0.4, 0.0);
   return plan;
 }
