@@ -78,6 +78,20 @@ int split_unscaled_groups(CameraPath* path, std::vector<PathPoint>* points) {
   return count;
 }
 
+bool pair_sees_spot(const StillsPair& pair, int placed_frame, const Eigen::Vector2d& placed_position,
+                    double placed_heading, const Eigen::Vector2d& spot, const PairPlacementOptions& options) {
+  const double turn = pair.turn_deg * M_PI / 180.0, direction = pair.direction_deg * M_PI / 180.0;
+  // B = A + L (cos(hA + phi), sin(hA + phi)); seen from B, A lies at phi + pi - psi.
+  const double predicted =
+      pair.a == placed_frame ? placed_heading + direction : placed_heading + direction + M_PI - turn;
+  const Eigen::Vector2d to_spot = spot - placed_position;
+  const double distance = to_spot.norm();
+  if (!(distance > 0)) return false;
+  const double off = std::remainder(std::atan2(to_spot.y(), to_spot.x()) - predicted, 2 * M_PI);
+  const double miss = distance * std::abs(std::sin(off));
+  return std::abs(off) <= options.heading_spread_deg * M_PI / 180.0 || miss <= 2 * options.lateral_m;
+}
+
 CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<StillsPair>& pairs,
                                     const std::function<cv::Mat(int)>& read, const FloorPlan& plan,
                                     std::vector<PathPoint>* points, const PairPlacementOptions& options,
@@ -156,6 +170,21 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
       }
     }
     if (!(runner_up >= options.min_ambiguity_ratio * pose.score_px)) {
+      r.rejected.push_back(to);
+      continue;
+    }
+    // The still's other pairs with placed stills must see it where it was put: along a row of stills the
+    // walls can fit a spot a bay off, which only a pair from off the row shows.
+    bool contradicted = false;
+    for (const StillsPair& p : pairs) {
+      if (&p == best || (p.a != to && p.b != to)) continue;
+      if (p.inliers < options.min_inliers || p.median_parallax_deg < 1.0) continue;
+      const int other = p.a == to ? p.b : p.a;
+      if (!placed(other)) continue;
+      const PathFrame& q = *out.find_frame(other);
+      if (!pair_sees_spot(p, other, q.position(), q.heading, {pose.x, pose.y}, options)) contradicted = true;
+    }
+    if (contradicted) {
       r.rejected.push_back(to);
       continue;
     }

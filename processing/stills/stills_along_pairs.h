@@ -66,6 +66,13 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
                                     PairPlacementReport* report = nullptr,
                                     Progress& progress = null_progress());
 
+// Whether `pair` (one of its stills placed at placed_position, placed_heading; placed_frame its capture
+// index) sees its other still at `spot`: the pair's direction from the placed still passes within
+// heading_spread_deg, or within 2 lateral_m, of it. A still placed along one pair is checked against its
+// other pairs with placed stills this way, and left for the author when one disagrees.
+bool pair_sees_spot(const StillsPair& pair, int placed_frame, const Eigen::Vector2d& placed_position,
+                    double placed_heading, const Eigen::Vector2d& spot, const PairPlacementOptions& options);
+
 // Every unplaced piece of more than one still whose scale is not metric (scale_source other than
 // "camera_height") becomes pieces of one still each, in their place in capture order; the pieces after
 // them are renumbered. `points` (when given) follow: a point goes to the piece of the still it is tied to

@@ -200,6 +200,28 @@ TEST(StillsAlongPairs, AGroupWithoutMetricScaleIsPlacedStillByStill) {
   EXPECT_DOUBLE_EQ(points[0].position.z(), -0.3);
 }
 
+// A still placed along one pair is checked against its other pairs. Truth: the pair's geometry by hand.
+TEST(StillsAlongPairs, AnotherPairSaysWhereTheStillCannotBe) {
+  // Still 1 at A = (0, 0) facing 90 deg sees still 2 at 30 deg to its left, 3 m away; still 2 turned 45 deg.
+  StillsPair pair;
+  pair.a = 1;
+  pair.b = 2;
+  pair.direction_deg = 30.0;
+  pair.turn_deg = 45.0;
+  const double deg = M_PI / 180.0;
+  const Eigen::Vector2d a(0, 0), b = 3.0 * Eigen::Vector2d(std::cos(120 * deg), std::sin(120 * deg));
+  const Eigen::Vector2d sideways = Eigen::Vector2d(-std::sin(120 * deg), std::cos(120 * deg));
+  const PairPlacementOptions options;  // 3 deg, or 2 x 0.1 m across
+  EXPECT_TRUE(pair_sees_spot(pair, 1, a, 90 * deg, b, options));
+  EXPECT_TRUE(pair_sees_spot(pair, 1, a, 90 * deg, 2.0 * b, options));  // the pair gives no length
+  EXPECT_FALSE(pair_sees_spot(pair, 1, a, 90 * deg, b + 1.0 * sideways, options));
+  EXPECT_TRUE(pair_sees_spot(pair, 1, a, 90 * deg, b + 0.15 * sideways, options));  // within 0.2 m
+  // From still 2 (heading 135 deg), still 1 lies at 30 + 180 - 45 deg in its frame: world bearing 300 deg.
+  EXPECT_TRUE(pair_sees_spot(pair, 2, b, 135 * deg, a, options));
+  EXPECT_FALSE(pair_sees_spot(pair, 2, b, 135 * deg, a + 1.0 * sideways, options));
+  EXPECT_FALSE(pair_sees_spot(pair, 2, b, 135 * deg, b, options));  // no direction to itself
+}
+
 TEST(StillsAlongPairs, BadOptionsAreRefused) {
   PairPlacementOptions options;
   options.max_distance_m = 0.1;
