@@ -149,11 +149,16 @@ bool properly_crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const 
 
 }  // namespace
 
-std::vector<Segment2> exterior_openings(const std::vector<Segment2>& walls,
+std::vector<Segment2> exterior_openings(const std::vector<Segment2>& input,
                                         const ExteriorOpeningOptions& options) {
   options.check();
   std::vector<Segment2> out;
-  if (walls.empty() || options.max_opening_m <= 0) return out;
+  if (options.max_opening_m <= 0) return out;
+  // A drawing's stray NaN or zero-length segment would spoil the raster's extent: left out.
+  std::vector<Segment2> walls;
+  for (const Segment2& s : input)
+    if (s.a.allFinite() && s.b.allFinite() && s.a != s.b) walls.push_back(s);
+  if (walls.empty()) return out;
   const OpeningRaster raster = rasterize(walls, options);
   const SegmentGrid grid(walls);
 
@@ -193,6 +198,9 @@ std::vector<Segment2> exterior_openings(const std::vector<Segment2>& walls,
   // Each corner pairs with its nearest corners only: an opening's far corner is among them, and a drawing
   // of densely tessellated curves does not make the pairs grow as the square of its corners.
   constexpr std::size_t kPairsPerCorner = 24;
+  const auto by_length = [](const Candidate& x, const Candidate& y) {
+    return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+  };
   std::vector<Candidate> candidates, nearest;
   for (std::size_t i = 0; i < corners.size(); ++i) {
     nearest.clear();
@@ -208,18 +216,13 @@ std::vector<Segment2> exterior_openings(const std::vector<Segment2>& walls,
             nearest.push_back({length, std::min(static_cast<int>(i), j), std::max(static_cast<int>(i), j)});
         }
       }
-    const auto by_length = [](const Candidate& x, const Candidate& y) {
-      return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
-    };
     if (nearest.size() > kPairsPerCorner) {
       std::nth_element(nearest.begin(), nearest.begin() + kPairsPerCorner, nearest.end(), by_length);
       nearest.resize(kPairsPerCorner);
     }
     candidates.insert(candidates.end(), nearest.begin(), nearest.end());
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-    return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
-  });
+  std::sort(candidates.begin(), candidates.end(), by_length);
   candidates.erase(
       std::unique(candidates.begin(), candidates.end(),
                   [](const Candidate& x, const Candidate& y) { return x.a == y.a && x.b == y.b; }),

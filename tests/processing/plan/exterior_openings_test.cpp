@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "model/error.h"
 
 namespace plenopath {
@@ -102,6 +104,22 @@ TEST(ExteriorOpenings, ASlitBetweenTwoOutlinesIsClosed) {
   ASSERT_FALSE(closings.empty());
   for (const Segment2& s : closings) EXPECT_LE((s.a - s.b).norm(), 0.3);
   EXPECT_TRUE(crosses_any(closings, {5.0025, -1}, {5.0025, 1}));
+}
+
+TEST(ExteriorOpenings, NonFiniteAndZeroLengthSegmentsAreLeftOut) {
+  // A drawing's stray NaN, infinite and zero-length segments change nothing: the windows close as without
+  // them.
+  std::vector<Segment2> walls = hall_with_windows(1.6);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  walls.push_back({{nan, 0}, {1, 1}});
+  walls.push_back({{0, 0}, {inf, 2}});
+  walls.push_back({{4, 4}, {4, 4}});
+  const std::vector<Segment2> closings = exterior_openings(walls);
+  EXPECT_EQ(closings.size(), exterior_openings(hall_with_windows(1.6)).size());
+  EXPECT_TRUE(crosses_any(closings, {3, -1}, {3, 1}));
+  // Nothing but degenerate segments, or one lone point: nothing to close, no throw.
+  EXPECT_TRUE(exterior_openings({{{nan, nan}, {nan, nan}}, {{1, 1}, {1, 1}}}).empty());
+  EXPECT_TRUE(exterior_openings({{{0, 0}, {0.001, 0}}}).empty());
 }
 
 TEST(ExteriorOpenings, OptionsAreChecked) {
