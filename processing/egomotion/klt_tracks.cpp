@@ -32,6 +32,7 @@ void KltOptions::check() const {
                  "must be in [0, max_features]", min_features);
   require_option(quality_level > 0 && quality_level < 1, s + "quality_level", "must be in (0, 1)",
                  quality_level);
+  require_option(exposure_jump > 0, s + "exposure_jump", "must be > 0", exposure_jump);
   require_option(min_distance_px >= 1, s + "min_distance_px", "must be >= 1", min_distance_px);
   require_option(window_px >= 5 && window_px % 2 == 1, s + "window_px", "must be odd and >= 5", window_px);
   require_option(pyramid_levels >= 0 && pyramid_levels <= 6, s + "pyramid_levels", "must be in [0, 6]",
@@ -141,7 +142,7 @@ void KltTracker::set_mask(const cv::Mat& mask) {
 }
 
 cv::Mat KltTracker::prepare(const cv::Mat& frame) {
-  const cv::Mat gray = equirect_at_width(grey_image_8u(frame, "KLT"), options_.work_width);
+  cv::Mat gray = equirect_at_width(grey_image_8u(frame, "KLT"), options_.work_width);
   if (width_ == 0) {
     width_ = gray.cols;
     height_ = gray.rows;
@@ -150,6 +151,28 @@ cv::Mat KltTracker::prepare(const cv::Mat& frame) {
     pad_ = std::min(pad_, width_ / 2);
   } else if (gray.cols != width_ || gray.rows != height_) {
     throw Error("KLT: frame size changed within the capture");
+  }
+  if (options_.normalise_exposure) {
+    // Lucas-Kanade assumes constant brightness: an auto-exposure jump of 20-30 % between two frames loses
+    // most tracks, and the capture breaks in pieces. The jump is the median brightness ratio of coarse
+    // blocks against the frame before (a crowd crossing part of the view changes its blocks only); beyond
+    // exposure_jump, this frame and every later one are scaled back by it (the gain accumulates). Slow drift
+    // is left alone.
+    cv::Mat blocks;
+    cv::resize(gray, blocks, cv::Size(64, 32), 0, 0, cv::INTER_AREA);
+    if (!previous_blocks_.empty()) {
+      std::vector<double> ratios;
+      for (int y = 0; y < blocks.rows; ++y)
+        for (int x = 0; x < blocks.cols; ++x) {
+          const int now = blocks.at<uchar>(y, x), before = previous_blocks_.at<uchar>(y, x);
+          if (now > 8 && before > 8 && now < 250 && before < 250) ratios.push_back(double(before) / now);
+        }
+      const double jump = ratios.size() > blocks.total() / 4 ? median(ratios) : 1.0;
+      if (std::abs(jump - 1.0) > options_.exposure_jump)
+        exposure_gain_ = std::clamp(exposure_gain_ * jump, 1.0 / 3.0, 3.0);
+    }
+    previous_blocks_ = blocks;
+    if (exposure_gain_ != 1.0) gray.convertTo(gray, CV_8U, exposure_gain_);
   }
   return gray;
 }

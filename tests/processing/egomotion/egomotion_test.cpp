@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -375,6 +376,29 @@ TEST(Egomotion, AMovingCrowdIsFlagged) {
   // The crowd hides most of the scene for a third of this short walk (bridged frames): measured ATE 2.9 %.
   for (const PathFrame& f : r.path.frames) EXPECT_TRUE(std::isfinite(f.x) && std::isfinite(f.y));
   EXPECT_LT(evaluate_path(r.path, walk.truth).ate_pct, 5.0);
+}
+
+// An auto-exposure jump (the whole image x0.7 for 20 frames, as a camera does walking under a window): one
+// piece, and the path as good as without it. Truth: the render's poses. Measured: heading RMS 0.027 deg,
+// ATE 0.027 %; with normalise_exposure off (PLENOPATH_TEST_NO_EXPOSURE=1) 0.147 deg, 0.135 %, and the
+// POV-Ray corridor walk broke in three pieces at its two jumps.
+TEST(Egomotion, AnExposureJumpDoesNotBreakTheCapture) {
+  const Walk& walk = short_walk();
+  std::vector<cv::Mat> frames;
+  for (const cv::Mat& f : walk.frames) frames.push_back(f.clone());
+  for (int f = 20; f < 40; ++f) frames[f].convertTo(frames[f], -1, 0.7);
+  EgomotionOptions options;
+  options.camera_height_m = 1.6;
+  if (std::getenv("PLENOPATH_TEST_NO_EXPOSURE")) options.klt.normalise_exposure = false;
+  const EgomotionResult r = EgomotionTracker::run(
+      static_cast<int>(frames.size()), [&](int i) { return frames[i]; }, options);
+  ASSERT_EQ(r.path.size(), frames.size());
+  EXPECT_LE(r.path.pieces.size(), 1u);  // one piece (a path in one piece lists none)
+  const PathErrors e = evaluate_path(r.path, walk.truth);
+  std::printf("exposure jump: %zu pieces, heading RMS %.3f deg, ATE %.3f %%\n", r.path.pieces.size(),
+              e.rot_rms_deg, e.ate_pct);
+  EXPECT_LT(e.rot_rms_deg, 0.08);
+  EXPECT_LT(e.ate_pct, 0.08);
 }
 
 TEST(Egomotion, BadOptionsAndInputsAreReported) {
