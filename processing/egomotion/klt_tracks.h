@@ -26,9 +26,8 @@ struct KltOptions {
   int window_px = 21;            // Lucas-Kanade window
   // Auto-exposure jumps undone before tracking: a frame whose brightness (median ratio of 64x32 blocks)
   // changes by more than exposure_jump (relative) against the frame before is scaled back (gain within
-  // 1/3..3, kept for the frames after). On
-  // the POV-Ray corridor walk (x1.2 on frames 60-95, x0.7 on 210-240) the capture otherwise breaks in three
-  // pieces at the jumps.
+  // 1/3..3, kept for the frames after). On the POV-Ray corridor walk (x1.2 on frames 60-95, x0.7 on
+  // 210-240) the capture otherwise breaks in three pieces at the jumps.
   bool normalise_exposure = true;
   double exposure_jump = 0.06;
   int pyramid_levels = 3;

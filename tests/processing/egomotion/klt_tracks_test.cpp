@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+
+#include "model/error.h"
 
 namespace plenopath {
 namespace {
@@ -62,6 +65,18 @@ TEST(KltTracks, PackedHistoryKeepsTheFollowedPositions) {
   EXPECT_LT(double(memory.bytes) / double(memory.observations), 10.0);
   std::printf("track history: %zu observations of %zu tracks in %zu bytes (%.2f a observation)\n",
               memory.observations, memory.tracks, memory.bytes, double(memory.bytes) / memory.observations);
+}
+
+// A bad exposure-jump threshold is refused, naming the field.
+TEST(KltTracks, ABadExposureJumpIsRefused) {
+  KltOptions options;
+  options.exposure_jump = 0.0;
+  try {
+    options.check();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("exposure_jump"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
