@@ -99,7 +99,7 @@ PlaceStepResult run_place_on_plan(Project project, const PlaceStepOptions& optio
   for (std::size_t k = 0; k < choices.result.pieces.size(); ++k) {
     const PieceRegistration& piece = choices.result.pieces[k];
     if (!piece.ok) {
-      failures += "piece " + std::to_string(piece.piece + 1) + ": " + describe(piece) + "\n";
+      failures += describe(piece) + "\n";  // "piece N: why"
       continue;
     }
     ++fitted;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <set>
@@ -142,6 +143,34 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
                   std::to_string(points.size()) + " points; at least " +
                   std::to_string(options.min_wall_points) + " needed between " + std::to_string(z_min) +
                   " and " + std::to_string(z_max) + " m from the camera)";
+    return out;
+  }
+  // A path longer than the plan is wide fits nowhere: a wrong metric scale, or another building. Said so
+  // here, before the search sizes its rasters by the path (a tracker that lost its scale once made one of
+  // 13 TB). Wall points beyond the plan's reach from the path are dropped for the same reason.
+  const double plan_span = coarse.cell * std::hypot(coarse.wall_proximity.cols, coarse.wall_proximity.rows);
+  Eigen::Vector2d low = frames.empty() ? Eigen::Vector2d::Zero() : frames.front(), high = low;
+  for (const Eigen::Vector2d& f : frames) {
+    low = low.cwiseMin(f);
+    high = high.cwiseMax(f);
+  }
+  const double path_span = (high - low).norm();
+  if (!(path_span <= 1.2 * plan_span + 2.0)) {
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(0) << "no placement fits: the path spans " << path_span
+      << " m and the plan only " << plan_span
+      << " m (is the metric scale right, or the plan another building?)";
+    out.message = m.str();
+    return out;
+  }
+  wall.erase(std::remove_if(wall.begin(), wall.end(),
+                            [&](const Eigen::Vector2d& p) {
+                              const Eigen::Vector2d outside = (low - p).cwiseMax(p - high).cwiseMax(0.0);
+                              return outside.norm() > plan_span;
+                            }),
+             wall.end());
+  if (static_cast<int>(wall.size()) < options.min_wall_points) {
+    out.message = "too few wall points within the plan's reach of the path: " + std::to_string(wall.size());
     return out;
   }
   // The global search needs no more than ~20 000 points; the refinement and the score see them all.

@@ -203,6 +203,24 @@ TEST(Registration, PointsFromAnotherBuildingFitNowhere) {
   EXPECT_EQ(same, piece.path);
 }
 
+TEST(Registration, APathFarLargerThanThePlanIsRefusedWithItsSpan) {
+  // A tracker that lost its scale (seen: a path 380 000 % too long) hands over a path kilometres long for
+  // a 12 m building: refused at once with both spans, never searched (the search's rasters are sized by
+  // the path: that one asked for 13 TB).
+  SyntheticPiece piece = synthesise(l_building(), corridor_walk(), Similarity2{}, 3);
+  for (PathFrame& f : piece.path.frames) {
+    f.x *= 1000;
+    f.y *= 1000;
+  }
+  for (PathPoint& p : piece.points) p.position.head<2>() *= 1000;  // heights stay metric (camera height)
+  const RegistrationResult r = register_on_plan(piece.path, piece.points, l_building());
+  ASSERT_EQ(r.pieces.size(), 1u);
+  EXPECT_FALSE(r.pieces[0].ok);
+  EXPECT_EQ(r.pieces[0].message.rfind("no placement fits: the path spans ", 0), 0u) << r.pieces[0].message;
+  EXPECT_NE(r.pieces[0].message.find("is the metric scale right"), std::string::npos);
+  EXPECT_EQ(apply_registration(piece.path, r), piece.path);
+}
+
 TEST(Registration, TwoPiecesAreRegisteredEachOnItsOwn) {
   const FloorPlan plan = l_building();
   std::vector<Eigen::Vector2d> first, second;
