@@ -112,6 +112,7 @@ Command add_track_command(CLI::App& parent) {
     std::string mask;                    // image of the pixels not to use (black), e.g. the trolley
     bool level = false;                  // per-frame pitch/roll from vertical edges
     double tilt_prior = RefinementOptions{}.tilt_prior_deg;
+    double floor_prior = 100.0 * RefinementOptions{}.floor_sigma;  // percent of the floor's depth
     bool no_static_mask = false;
     std::string mask_out;  // the mask used, written as an image
     std::string plan;      // DXF plan: the path is registered on it after tracking
@@ -185,6 +186,12 @@ Command add_track_command(CLI::App& parent) {
                   "Pitch and roll per frame are estimated in the refinement, held near level with this "
                   "spread in degrees (0: a perfectly level camera)")
       ->check(CLI::Range(0.0, 20.0))
+      ->capture_default_str();
+  sub->add_option("--floor-prior", options->floor_prior,
+                  "Points on the floor are held to one level, with this spread in percent of the camera "
+                  "height: the camera rides at one height (trolley, tripod, render), so the scale cannot "
+                  "drift along the walk (0: off, for a camera carried at a varying height)")
+      ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
@@ -271,6 +278,7 @@ Command add_track_command(CLI::App& parent) {
         eo.loop.enabled = !options->no_loop_closure;
         eo.klt.level_bearings = options->level;
         eo.refinement.tilt_prior_deg = options->tilt_prior;
+        eo.refinement.floor_sigma = options->floor_prior / 100.0;
         if (options->no_static_mask) eo.static_mask.frames = 0;
         if (!options->mask.empty()) {
           eo.mask = cv::imread(options->mask, cv::IMREAD_GRAYSCALE);

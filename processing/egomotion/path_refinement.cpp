@@ -33,6 +33,17 @@ struct DistancePrior {
   double distance, weight;
 };
 
+// Holds a floor point's height at the floor level (a parameter): weight = 1 / the spread in plan units.
+struct FloorLevelCost {
+  explicit FloorLevelCost(double weight) : weight(weight) {}
+  template <typename T>
+  bool operator()(const T* point, const T* level, T* residual) const {
+    residual[0] = T(weight) * (point[2] - level[0]);
+    return true;
+  }
+  double weight;
+};
+
 // Reports each iteration to [begin, end] of `progress` and stops the solver when cancelled (no exception
 // through Ceres: the caller throws once Solve() has returned).
 class ProgressCallback : public ceres::IterationCallback {
@@ -113,6 +124,39 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
     ++residuals;
   }
   if (residuals == 0) return;
+  // Poses held (two or more fix the scale).
+  int held = 0;
+  for (int i = first; i < std::min(held_end, last + 1); ++i) held += pose_used[i];
+  for (int i = std::max(first, std::min(held_from, last + 1)); i <= last; ++i) held += pose_used[i];
+  if (first == 0 && !pose_used[0]) held = 0;
+  // The floor points seen twice or more in the range, at one level: a parameter started at their median
+  // depth, free when held poses fix the scale, else held (the scale gauge).
+  bool floor_gauge = false;
+  double floor_level = 0.0;
+  if (options.floor_sigma > 0) {
+    std::vector<double> depths;
+    for (int q : p.floor_points)
+      if (count[static_cast<std::size_t>(q)] >= 2)
+        depths.push_back(-p.points[static_cast<std::size_t>(q)].z());
+    if (depths.size() >= 10) {
+      std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+      floor_level = -depths[depths.size() / 2];
+    }
+    if (floor_level < 0) {
+      // As the tilt prior: a point one spread off the level costs as much as one observation at the loss
+      // scale, under the same robust loss.
+      const double weight = options.loss_scale / (options.floor_sigma * -floor_level);
+      for (int q : p.floor_points)
+        if (count[static_cast<std::size_t>(q)] >= 2)
+          problem.AddResidualBlock(
+              new ceres::AutoDiffCostFunction<FloorLevelCost, 1, 3, 1>(new FloorLevelCost(weight)), &loss,
+              p.points[static_cast<std::size_t>(q)].data(), &floor_level);
+      if (held < 2) {
+        problem.SetParameterBlockConstant(&floor_level);
+        floor_gauge = true;
+      }
+    }
+  }
   // The prior's weight: a tilt of one prior spread costs as much as one observation at the loss scale.
   const double tilt_weight = tilted ? options.loss_scale / (options.tilt_prior_deg * M_PI / 180.0) : 0.0;
   bool any_free = false;
@@ -132,13 +176,11 @@ void solve_range(BundleProblem& p, const RefinementOptions& options, int first, 
       if (i == 0) any_free = true;
     }
   }
-  // Scale gauge: when fewer than two poses are held, hold the distance from the first used pose to the
-  // farthest one.
-  int held = 0;
-  for (int i = first; i < std::min(held_end, last + 1); ++i) held += pose_used[i];
-  for (int i = std::max(first, std::min(held_from, last + 1)); i <= last; ++i) held += pose_used[i];
-  if (first == 0 && !pose_used[0]) held = 0;
-  if (held < 2) {
+  // Scale gauge without floor points: the distance from the first used pose to the farthest one. (With
+  // them this chord is not held: held stiffly while the floor prior rescales stretches of the path, it
+  // bends the path instead. POV-Ray gallery walk, heading RMS / ATE: 0.145 deg / 0.07 % with the chord,
+  // 0.018 deg / 0.007 % with the level.)
+  if (held < 2 && !floor_gauge) {
     int anchor = first;
     while (anchor <= last && !pose_used[anchor]) ++anchor;
     int far = anchor;
@@ -537,6 +579,7 @@ void RefinementOptions::check() const {
   require_option(outlier_threshold >= 0, s + "outlier_threshold", "must be >= 0", outlier_threshold);
   require_option(tilt_prior_deg >= 0 && tilt_prior_deg <= 20, s + "tilt_prior_deg", "must be in [0, 20]",
                  tilt_prior_deg);
+  require_option(floor_sigma >= 0, s + "floor_sigma", "must be >= 0 (0 = off)", floor_sigma);
   require_option(global_max_observations >= 0, s + "global_max_observations", "must be >= 0 (0 = no limit)",
                  global_max_observations);
 }

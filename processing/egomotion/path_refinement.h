@@ -32,6 +32,9 @@ struct BundleProblem {
   // (pitch, roll) per pose, radians, when the refinement estimates them (RefinementOptions::tilt_prior_deg);
   // empty = level cameras (the planar model).
   std::vector<Eigen::Vector2d> tilts;
+  // Points on the floor (indices into points; floor_points.h finds them), held to one level below the
+  // camera centres by RefinementOptions::floor_sigma. Empty = no floor prior.
+  std::vector<int> floor_points;
 };
 
 struct RefinementOptions {
@@ -64,6 +67,11 @@ struct RefinementOptions {
   // 1 deg wobble + 1.5 deg bumps 0.32/0.47/2.1 -> 0.18/0.40/0.33; all nuisances 0.22/0.32/1.7 ->
   // 0.066/0.078/0.07. About 30 % more time in the refinement.
   double tilt_prior_deg = 2.0;
+  // > 0: BundleProblem::floor_points are held to one common level (a free parameter of each solve) with
+  // this spread, a share of the level's depth, under a Cauchy loss: the camera rides at one height over a
+  // flat floor (a trolley, a tripod, a rendered walk), so the scale cannot drift along the walk. 0 = off
+  // (a camera carried at a varying height).
+  double floor_sigma = 0.01;
   void check() const;  // throws Error naming the bad field
 };
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "processing/egomotion/egomotion_steps.h"
+#include "processing/egomotion/floor_points.h"
 #include "processing/egomotion/planar_two_view.h"
 #include "processing/util/statistics.h"
 
@@ -305,6 +306,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
     problem.points.push_back(point[t]);
     problem.observations.insert(problem.observations.end(), obs.begin(), obs.end());
   }
+  if (refinement.floor_sigma > 0) problem.floor_points = find_floor_points(problem);
   result.points = static_cast<int>(problem.points.size());
   result.observations = static_cast<int>(problem.observations.size());
   report("refinement", 0.0);

@@ -1,0 +1,72 @@
+#include "processing/egomotion/floor_points.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/option_check.h"
+#include "processing/util/statistics.h"
+
+namespace plenopath {
+
+void FloorPointOptions::check() const {
+  const std::string s = "FloorPointOptions.";
+  require_option(min_depression_deg > 0 && min_depression_deg < 90, s + "min_depression_deg",
+                 "must be in (0, 90)", min_depression_deg);
+  require_option(neighbour_poses >= 0, s + "neighbour_poses", "must be >= 0", neighbour_poses);
+  require_option(max_level_deviation > 0, s + "max_level_deviation", "must be > 0", max_level_deviation);
+}
+
+std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options) {
+  options.check();
+  const std::size_t n = problem.points.size();
+  // Per point: its observations' elevations (sine of), and the first pose that saw it.
+  std::vector<std::vector<float>> elevation(n);
+  std::vector<int> first_pose(n, static_cast<int>(problem.poses.size()));
+  for (const BundleObservation& o : problem.observations) {
+    elevation[static_cast<std::size_t>(o.point)].push_back(o.bearing_f.z());
+    first_pose[static_cast<std::size_t>(o.point)] =
+        std::min(first_pose[static_cast<std::size_t>(o.point)], o.pose);
+  }
+  const double max_sine = -std::sin(options.min_depression_deg * M_PI / 180.0);
+  struct Candidate {
+    int first_pose, point;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t q = 0; q < n; ++q) {
+    std::vector<float>& e = elevation[q];
+    if (e.empty() || !(problem.points[q].z() < 0)) continue;
+    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
+    if (e[e.size() / 2] < max_sine) candidates.push_back({first_pose[q], static_cast<int>(q)});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.first_pose < b.first_pose; });
+  // The local level: the median depth of the candidates first seen within neighbour_poses (at least 10 of
+  // them; else no level, no floor there).
+  std::vector<int> floor;
+  std::size_t lo = 0, hi = 0;
+  std::vector<double> depths;
+  for (std::size_t g = 0; g < candidates.size();) {
+    // The candidates first seen by one pose share a level.
+    const int pose = candidates[g].first_pose;
+    std::size_t group_end = g;
+    while (group_end < candidates.size() && candidates[group_end].first_pose == pose) ++group_end;
+    while (lo < candidates.size() && candidates[lo].first_pose < pose - options.neighbour_poses) ++lo;
+    while (hi < candidates.size() && candidates[hi].first_pose <= pose + options.neighbour_poses) ++hi;
+    if (hi - lo >= 10) {
+      depths.clear();
+      for (std::size_t k = lo; k < hi; ++k)
+        depths.push_back(-problem.points[static_cast<std::size_t>(candidates[k].point)].z());
+      const double level = median(depths);
+      for (std::size_t k = g; k < group_end; ++k) {
+        const double depth = -problem.points[static_cast<std::size_t>(candidates[k].point)].z();
+        if (std::abs(depth / level - 1.0) <= options.max_level_deviation)
+          floor.push_back(candidates[k].point);
+      }
+    }
+    g = group_end;
+  }
+  std::sort(floor.begin(), floor.end());
+  return floor;
+}
+
+}  // namespace plenopath

@@ -1,0 +1,26 @@
+#pragma once
+// The points of the floor among a bundle's points, for the refinement's floor-level prior
+// (RefinementOptions::floor_sigma): a trolley or tripod carries the camera at one height over a flat floor,
+// so every floor point lies at one level below the camera centres (z = 0). Tied to that level, the points
+// make the scale observable along the whole walk, and the chained steps cannot shrink or grow
+// (monocular scale drift).
+#include <vector>
+
+#include "processing/egomotion/path_refinement.h"
+
+namespace plenopath {
+
+struct FloorPointOptions {
+  double min_depression_deg = 20.0;   // the point's median observation looks down at least this steeply
+  int neighbour_poses = 8;            // the level it is compared with: candidates first seen this near
+  double max_level_deviation = 0.08;  // ... and it lies within this share of their median level
+  void check() const;                 // throws Error naming the bad field
+};
+
+// Indices of problem.points judged to be on the floor. Scale-free: the depression is read from the bearings,
+// and each candidate is compared with the level of candidates first seen near it (so a path whose scale has
+// drifted is classified as well as one that has not). Tables, benches and reflections in a glossy floor
+// are mostly left out; the prior's robust loss takes care of the rest.
+std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options = {});
+
+}  // namespace plenopath
