@@ -122,6 +122,9 @@ PY
 "$cli" track --capture "$tmp/cap" --tilt-prior 30 --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 2 ]] || fail "--tilt-prior 30: exit $code"
 grep -q -- "--tilt-prior" "$tmp/err.txt" || fail "--tilt-prior message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --floor-prior -1 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 2 ]] || fail "--floor-prior -1: exit $code"
+grep -q -- "--floor-prior" "$tmp/err.txt" || fail "--floor-prior message: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/cap" --mask "$tmp/no-such-mask.png" --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing mask: exit $code"
 grep -q "no-such-mask.png" "$tmp/err.txt" || fail "missing mask message: $(cat "$tmp/err.txt")"
