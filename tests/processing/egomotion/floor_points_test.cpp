@@ -13,6 +13,7 @@
 #include "model/camera_path.h"
 #include "model/error.h"
 #include "processing/egomotion/path_evaluation.h"
+#include "tests/processing/egomotion/pose_errors.h"
 
 namespace plenopath {
 namespace {
@@ -96,16 +97,6 @@ Corridor make_corridor(std::uint32_t seed, double drift, double sight = 1.6, dou
   return c;
 }
 
-PathErrors accuracy(const std::vector<Eigen::Vector3d>& estimate, const std::vector<Eigen::Vector3d>& truth) {
-  CameraPath a, b;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    a.frames.push_back(
-        {static_cast<int>(i), "", estimate[i].x(), estimate[i].y(), estimate[i].z(), 1.0, 0, ""});
-    b.frames.push_back({static_cast<int>(i), "", truth[i].x(), truth[i].y(), truth[i].z(), 1.0, 0, ""});
-  }
-  return evaluate_path(a, b);
-}
-
 // The floor is found on starting values whose scale halves along the walk: the table tops (half-way down)
 // and the walls' foot are told from it by the level of their neighbours, not by one global level.
 TEST(FloorPoints, FoundUnderAScaleThatHalvesAlongTheWalk) {
@@ -129,7 +120,7 @@ TEST(FloorPoints, TheFloorLevelTakesOutScaleDrift) {
   double ate[2] = {0, 0}, before = 0;
   for (int with_floor = 0; with_floor < 2; ++with_floor) {
     Corridor c = make_corridor(5, std::log(1 / 0.7) / 300, 1.6, 0.002, 4);
-    before = accuracy(c.problem.poses, c.truth_poses).ate_pct;
+    before = pose_errors(c.problem.poses, c.truth_poses).ate_pct;
     RefinementOptions options;
     options.tilt_prior_deg = 0;
     if (with_floor) {
@@ -138,7 +129,7 @@ TEST(FloorPoints, TheFloorLevelTakesOutScaleDrift) {
       options.floor_sigma = 0;
     }
     refine_bundle(c.problem, options);
-    const PathErrors e = accuracy(c.problem.poses, c.truth_poses);
+    const PathErrors e = pose_errors(c.problem.poses, c.truth_poses);
     ate[with_floor] = e.ate_pct;
     std::printf("%s: ATE %.4f %% (before %.3f %%), heading RMS %.4f deg\n",
                 with_floor ? "floor level" : "no floor", e.ate_pct, before, e.rot_rms_deg);

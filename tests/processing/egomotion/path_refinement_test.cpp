@@ -13,6 +13,7 @@
 #include "model/error.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/util/progress.h"
+#include "tests/processing/egomotion/pose_errors.h"
 
 namespace plenopath {
 namespace {
@@ -80,13 +81,7 @@ Synthetic make_problem(std::uint32_t seed, double tilt_deg = 0.0, int point_coun
 }
 
 double ate_m(const std::vector<Eigen::Vector3d>& estimate, const std::vector<Eigen::Vector3d>& truth) {
-  CameraPath a, b;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    a.frames.push_back(
-        {static_cast<int>(i), "", estimate[i].x(), estimate[i].y(), estimate[i].z(), 1.0, 0, ""});
-    b.frames.push_back({static_cast<int>(i), "", truth[i].x(), truth[i].y(), truth[i].z(), 1.0, 0, ""});
-  }
-  return evaluate_path(a, b).ate_rms_m;
+  return pose_errors(estimate, truth).ate_rms_m;
 }
 
 // Thinned to a quarter (each point through fewer observations), and below three observations a point (a
