@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "model/option_check.h"
 #include "processing/util/statistics.h"
@@ -14,6 +15,44 @@ void FloorPointOptions::check() const {
                  "must be in (0, 90)", min_depression_deg);
   require_option(neighbour_poses >= 0, s + "neighbour_poses", "must be >= 0", neighbour_poses);
   require_option(max_level_deviation > 0, s + "max_level_deviation", "must be > 0", max_level_deviation);
+}
+
+double floor_depth(const std::vector<double>& depths) {
+  constexpr double kBin = 0.04;
+  std::map<int, int> bins;
+  for (double d : depths)
+    if (d > 0 && std::isfinite(d)) ++bins[static_cast<int>(std::floor(std::log(d) / kBin))];
+  if (bins.empty()) return 0.0;
+  auto smoothed = [&](int bin) {
+    int c = 0;
+    for (int b = bin - 1; b <= bin + 1; ++b) {
+      const auto it = bins.find(b);
+      if (it != bins.end()) c += it->second;
+    }
+    return c;
+  };
+  int most = 0, crowded = bins.begin()->first;
+  for (const auto& [bin, count] : bins)
+    if (smoothed(bin) > most) {
+      most = smoothed(bin);
+      crowded = bin;
+    }
+  // The deepest bin of a crowded enough level (a third of the most crowded, and a tenth of all points: a
+  // few stray deep points are no level), then the fullest bin just above it (the level's middle).
+  int chosen = crowded;
+  const int enough = std::max((most + 2) / 3, static_cast<int>(std::ceil(0.1 * depths.size())));
+  for (auto it = bins.rbegin(); it != bins.rend(); ++it)
+    if (smoothed(it->first) >= enough) {
+      chosen = it->first;
+      for (int b = it->first - 1; b >= it->first - 2; --b)
+        if (smoothed(b) > smoothed(chosen)) chosen = b;
+      break;
+    }
+  // The median of the depths within that level's three bins.
+  std::vector<double> near;
+  for (double d : depths)
+    if (d > 0 && std::abs(std::floor(std::log(d) / kBin) - chosen) <= 1) near.push_back(d);
+  return median(near);
 }
 
 std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options) {
@@ -40,7 +79,7 @@ std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPoin
   }
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.first_pose < b.first_pose; });
-  // The local level: the median depth of the candidates first seen within neighbour_poses (at least 10 of
+  // The local level: floor_depth() of the candidates first seen within neighbour_poses (at least 10 of
   // them; else no level, no floor there).
   std::vector<int> floor;
   std::size_t lo = 0, hi = 0;
@@ -56,7 +95,7 @@ std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPoin
       depths.clear();
       for (std::size_t k = lo; k < hi; ++k)
         depths.push_back(-problem.points[static_cast<std::size_t>(candidates[k].point)].z());
-      const double level = median(depths);
+      const double level = floor_depth(depths);
       for (std::size_t k = g; k < group_end; ++k) {
         const double depth = -problem.points[static_cast<std::size_t>(candidates[k].point)].z();
         if (std::abs(depth / level - 1.0) <= options.max_level_deviation)

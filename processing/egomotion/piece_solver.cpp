@@ -15,8 +15,8 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-// Step 4: the camera height over the floor points (seen steeply downwards; the floor is the dominant level
-// among them). Returns metres per unit, 0 when there are too few floor points.
+// Step 4: the camera height over the floor points (seen steeply downwards; the floor is the deepest crowded
+// level among them). Returns metres per unit, 0 when there are too few floor points.
 double scale_from_camera_height(const BundleProblem& problem, double camera_height_m, int* floor_points) {
   std::vector<double> steep;
   // Steepness from the observing keyframes: keep points whose first observation looks down > 25 deg.
@@ -30,26 +30,13 @@ double scale_from_camera_height(const BundleProblem& problem, double camera_heig
     if (p.z() < 0 && std::atan2(-p.z(), horizontal) > 25 * kDeg) steep.push_back(-p.z());
   }
   if (steep.size() < 20) return 0.0;
-  // Mode of log depth (bins of 2 %), then the median within 4 % of it.
-  std::map<int, int> bins;
-  for (double z : steep) ++bins[static_cast<int>(std::floor(std::log(z) / 0.02))];
-  int best_bin = 0, best_count = -1;
-  for (const auto& [bin, count] : bins) {
-    const int c =
-        count + (bins.count(bin - 1) ? bins[bin - 1] : 0) + (bins.count(bin + 1) ? bins[bin + 1] : 0);
-    if (c > best_count) {
-      best_count = c;
-      best_bin = bin;
-    }
-  }
-  const double mode = std::exp((best_bin + 0.5) * 0.02);
-  std::vector<double> near;
-  for (double z : steep)
-    if (std::abs(z / mode - 1.0) < 0.04) near.push_back(z);
-  const double floor_depth = median(near);
-  if (!(floor_depth > 0)) return 0.0;
-  *floor_points = static_cast<int>(near.size());
-  return camera_height_m / floor_depth;
+  // The floor's level among them (floor_points.h: the deepest crowded level, not desk tops).
+  const double level = floor_depth(steep);
+  if (!(level > 0)) return 0.0;
+  int near = 0;
+  for (double z : steep) near += std::abs(z / level - 1.0) < 0.04;
+  *floor_points = near;
+  return camera_height_m / level;
 }
 
 }  // namespace
