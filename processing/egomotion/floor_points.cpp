@@ -58,25 +58,25 @@ double floor_depth(const std::vector<double>& depths) {
 std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options) {
   options.check();
   const std::size_t n = problem.points.size();
-  // Per point: its observations' elevations (sine of), and the first pose that saw it.
-  std::vector<std::vector<float>> elevation(n);
+  // Per point: how many of its observations look down steeply enough, of how many, and the first pose that
+  // saw it. (Counts, not lists: a long capture has millions of points.)
+  const double max_sine = -std::sin(options.min_depression_deg * M_PI / 180.0);
+  std::vector<int> steep(n, 0), seen(n, 0);
   std::vector<int> first_pose(n, static_cast<int>(problem.poses.size()));
   for (const BundleObservation& o : problem.observations) {
-    elevation[static_cast<std::size_t>(o.point)].push_back(o.bearing_f.z());
-    first_pose[static_cast<std::size_t>(o.point)] =
-        std::min(first_pose[static_cast<std::size_t>(o.point)], o.pose);
+    const std::size_t q = static_cast<std::size_t>(o.point);
+    steep[q] += static_cast<double>(o.bearing_f.z()) < max_sine;
+    ++seen[q];
+    first_pose[q] = std::min(first_pose[q], o.pose);
   }
-  const double max_sine = -std::sin(options.min_depression_deg * M_PI / 180.0);
   struct Candidate {
     int first_pose, point;
   };
   std::vector<Candidate> candidates;
-  for (std::size_t q = 0; q < n; ++q) {
-    std::vector<float>& e = elevation[q];
-    if (e.empty() || !(problem.points[q].z() < 0)) continue;
-    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
-    if (e[e.size() / 2] < max_sine) candidates.push_back({first_pose[q], static_cast<int>(q)});
-  }
+  for (std::size_t q = 0; q < n; ++q)
+    // The median observation (the upper one of an even count) is steep: more than half of them are.
+    if (seen[q] > 0 && problem.points[q].z() < 0 && 2 * steep[q] > seen[q])
+      candidates.push_back({first_pose[q], static_cast<int>(q)});
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.first_pose < b.first_pose; });
   // The local level: floor_depth() of the candidates first seen within neighbour_poses (at least 10 of
