@@ -15,6 +15,7 @@ nlohmann::json candidate_json(const RegistrationCandidate& c) {
           {"score", c.score},
           {"wall_share", c.wall_share},
           {"free_share", c.free_share},
+          {"through_share", c.through_share},
           {"rms_m", c.rms_m}};
 }
 

@@ -73,7 +73,25 @@ Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& wall_points, const Pl
   return out;
 }
 
+bool seen_through_wall(const Eigen::Vector2d& camera, const Eigen::Vector2d& q, const SegmentGrid& grid,
+                       double margin, double depth_margin) {
+  // Beyond the wall by more than the point's depth uncertainty (a far wall's points scatter behind it), and
+  // not on that wall (seen at a grazing angle, a point a few cm off its wall's line crosses that line well
+  // before it).
+  const double length = (q - camera).norm();
+  const double behind = std::max(margin, depth_margin * length);
+  for (int i : grid.along(camera, q)) {
+    const Segment2& seg = grid.segments()[static_cast<std::size_t>(i)];
+    double t = 0, u = 0;
+    if (intersect_segments(camera, q, seg.a, seg.b, &t, &u) && (1 - t) * length > behind &&
+        distance_point_segment(q, seg.a, seg.b) > margin)
+      return true;
+  }
+  return false;
+}
+
 RegistrationCandidate score_placement(const std::vector<Eigen::Vector2d>& wall_points,
+                                      const std::vector<Eigen::Vector2d>& observers,
                                       const std::vector<Eigen::Vector2d>& frames, const PlanRaster& plan,
                                       const SegmentGrid& grid, const Similarity2& transform,
                                       const RegistrationOptions& options) {
@@ -89,12 +107,24 @@ RegistrationCandidate score_placement(const std::vector<Eigen::Vector2d>& wall_p
     sum2 += d * d;
     ++inliers;
   }
+  // A point the placement puts beyond a wall from where it was measured contradicts it.
+  int through = 0;
+  if (options.seen_through_weight > 0 && observers.size() == wall_points.size())
+    for (std::size_t i = 0; i < wall_points.size(); ++i)
+      if (observers[i].allFinite() &&
+          seen_through_wall(transform.apply(observers[i]), transform.apply(wall_points[i]), grid, tol,
+                            options.seen_through_depth_margin))
+        ++through;
   int free = 0;
   for (const Eigen::Vector2d& f : frames) free += plan.is_free(transform.apply(f));
-  c.wall_share = wall_points.empty() ? 0.0 : double(inliers) / wall_points.size();
+  const double n = static_cast<double>(wall_points.size());
+  c.wall_share = wall_points.empty() ? 0.0 : inliers / n;
+  c.through_share = wall_points.empty() ? 0.0 : through / n;
   c.free_share = frames.empty() ? 1.0 : double(free) / frames.size();
   c.rms_m = inliers ? std::sqrt(sum2 / inliers) : 0.0;
-  c.score = (wall_points.empty() ? 0.0 : soft / wall_points.size()) * c.free_share;
+  c.score = wall_points.empty()
+                ? 0.0
+                : std::max(0.0, (soft - options.seen_through_weight * through) / n) * c.free_share;
   return c;
 }
 

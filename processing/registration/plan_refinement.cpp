@@ -119,8 +119,12 @@ struct Fit {
   double wall_share = 0.0, rms_m = 0.0, free_share = 0.0;
 };
 
+// `measured`: the frames whose pose the images gave (bridged frames, held or interpolated, do not count
+// for free space: frames held at the last pose inside a wall the camera passed through once cost the right
+// placement of the gap walk's first room).
 Fit fit_of(const std::vector<DriftTie>& ties, const std::vector<std::array<double, 3>>& poses, double scale,
-           const PlanRaster& plan, const SegmentGrid& grid, double tolerance) {
+           const std::vector<char>& measured, const PlanRaster& plan, const SegmentGrid& grid,
+           double tolerance) {
   Fit fit;
   int inliers = 0;
   double sum2 = 0;
@@ -132,9 +136,13 @@ Fit fit_of(const std::vector<DriftTie>& ties, const std::vector<std::array<doubl
   }
   fit.wall_share = ties.empty() ? 0.0 : double(inliers) / ties.size();
   fit.rms_m = inliers ? std::sqrt(sum2 / inliers) : 0.0;
-  int free = 0;
-  for (const std::array<double, 3>& p : poses) free += plan.is_free({p[0], p[1]}) ? 1 : 0;
-  fit.free_share = poses.empty() ? 0.0 : double(free) / poses.size();
+  int free = 0, counted = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!measured[i]) continue;
+    ++counted;
+    free += plan.is_free({poses[i][0], poses[i][1]}) ? 1 : 0;
+  }
+  fit.free_share = counted ? double(free) / counted : 0.0;
   return fit;
 }
 
@@ -145,10 +153,14 @@ void refine_piece(const CameraPath& piece, const std::vector<DriftTie>& ties, co
                   std::vector<std::array<double, 3>>* out_poses, double* out_scale, Progress& progress) {
   const std::size_t n = piece.frames.size();
   std::vector<std::array<double, 3>> start(n);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<char> measured(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
     start[i] = {piece.frames[i].x, piece.frames[i].y, piece.frames[i].heading};
+    measured[i] = (piece.frames[i].flags & kFrameBridged) ? 0 : 1;
+  }
+  if (std::count(measured.begin(), measured.end(), 1) == 0) measured.assign(n, 1);
   const double tolerance = options.registration.inlier_tolerance_m;
-  const Fit before = fit_of(ties, start, 1.0, plan, grid, tolerance);
+  const Fit before = fit_of(ties, start, 1.0, measured, plan, grid, tolerance);
   report->wall_share_before = before.wall_share;
   report->rms_before_m = before.rms_m;
   report->free_share_before = before.free_share;
@@ -246,7 +258,7 @@ void refine_piece(const CameraPath& piece, const std::vector<DriftTie>& ties, co
     report->iterations += static_cast<int>(summary.iterations.size());
   }
   report->refined = true;
-  const Fit after = fit_of(ties, poses, drift[0], plan, grid, tolerance);
+  const Fit after = fit_of(ties, poses, drift[0], measured, plan, grid, tolerance);
   report->wall_share_after = after.wall_share;
   report->rms_after_m = after.rms_m;
   report->free_share_after = after.free_share;

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "model/error.h"
 #include "model/option_check.h"
@@ -99,6 +100,9 @@ void RegistrationOptions::check() const {
                  distinct_translation_m);
   require_option(icp_iterations >= 0, s + "icp_iterations", "must be >= 0", icp_iterations);
   require_option(huber_m > 0, s + "huber_m", "must be > 0", huber_m);
+  require_option(seen_through_weight >= 0, s + "seen_through_weight", "must be >= 0", seen_through_weight);
+  require_option(seen_through_depth_margin >= 0 && seen_through_depth_margin < 1,
+                 s + "seen_through_depth_margin", "must be in [0, 1)", seen_through_depth_margin);
   require_option(min_score >= 0 && min_score <= 1, s + "min_score", "must be in [0, 1]", min_score);
   require_option(window_length_m >= 0, s + "window_length_m", "must be >= 0", window_length_m);
   require_option(min_wall_points >= 3, s + "min_wall_points", "must be >= 3", min_wall_points);
@@ -119,7 +123,10 @@ namespace {
 
 int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
 
+// `frames`: the piece's frames whose pose the images gave; `frame_position`: every frame of the path by its
+// index (where a point was measured from).
 PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& frames,
+                                 const std::unordered_map<int, Eigen::Vector2d>& frame_position,
                                  const std::vector<const PathPoint*>& points, const PlanRaster& plan,
                                  const CoarseRaster& coarse, const SegmentGrid& grid,
                                  const std::vector<double>& plan_dirs, const RegistrationOptions& options,
@@ -134,9 +141,14 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
   RegistrationOptions band = options;
   band.min_observations =
       std::min(options.min_observations, std::max(2, static_cast<int>(frames.size()) - 1));
-  std::vector<Eigen::Vector2d> wall;
-  for (const PathPoint* p : points)
-    if (in_wall_band(*p, band, out.ceiling_m)) wall.push_back(p->position.head<2>());
+  std::vector<Eigen::Vector2d> wall, observers;
+  const Eigen::Vector2d unknown = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  for (const PathPoint* p : points) {
+    if (!in_wall_band(*p, band, out.ceiling_m)) continue;
+    wall.push_back(p->position.head<2>());
+    const auto at = frame_position.find(p->frame);
+    observers.push_back(at == frame_position.end() ? unknown : at->second);
+  }
   out.wall_points = static_cast<int>(wall.size());
   if (out.wall_points < options.min_wall_points) {
     out.message = "too few wall points to register: " + std::to_string(out.wall_points) + " (of " +
@@ -163,12 +175,15 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
     out.message = m.str();
     return out;
   }
-  wall.erase(std::remove_if(wall.begin(), wall.end(),
-                            [&](const Eigen::Vector2d& p) {
-                              const Eigen::Vector2d outside = (low - p).cwiseMax(p - high).cwiseMax(0.0);
-                              return outside.norm() > plan_span;
-                            }),
-             wall.end());
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < wall.size(); ++i) {
+    const Eigen::Vector2d outside = (low - wall[i]).cwiseMax(wall[i] - high).cwiseMax(0.0);
+    if (outside.norm() > plan_span) continue;
+    wall[kept] = wall[i];
+    observers[kept++] = observers[i];
+  }
+  wall.resize(kept);
+  observers.resize(kept);
   if (static_cast<int>(wall.size()) < options.min_wall_points) {
     out.message = "too few wall points within the plan's reach of the path: " + std::to_string(wall.size());
     return out;
@@ -194,7 +209,7 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
   for (std::size_t i = 0; i < starts.size(); ++i) {
     progress.checkpoint(0.7 + 0.3 * double(i) / starts.size(), "refinement");
     const Similarity2 t = refine_icp(wall, plan, starts[i].transform, 3.0 * coarse.cell, options);
-    RegistrationCandidate c = score_placement(wall, frames, plan, grid, t, options);
+    RegistrationCandidate c = score_placement(wall, observers, frames, plan, grid, t, options);
     Placement p;
     p.transform = t;
     p.score = c.score;
@@ -221,9 +236,9 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
   if (!out.ok) {
     std::ostringstream m;
     m << "no placement fits: best candidate has " << percent(best.wall_share)
-      << " % of wall points on walls and " << percent(best.free_share) << " % of frames in free space (score "
-      << std::lround(100 * best.score) << " %, at least " << std::lround(100 * options.min_score)
-      << " % needed)";
+      << " % of wall points on walls, " << percent(best.through_share) << " % seen through walls and "
+      << percent(best.free_share) << " % of frames in free space (score " << std::lround(100 * best.score)
+      << " %, at least " << std::lround(100 * options.min_score) << " % needed)";
     out.message = m.str();
   }
   return out;
@@ -255,10 +270,20 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
 
   std::vector<std::vector<const PathPoint*>> by_piece(static_cast<std::size_t>(piece_count));
   for (const PathPoint& p : points) by_piece[static_cast<std::size_t>(p.piece)].push_back(&p);
-  std::vector<std::vector<Eigen::Vector2d>> frames(static_cast<std::size_t>(piece_count));
-  for (const PathFrame& f : path.frames)
+  // Frames the tracker bridged (held or interpolated where the images gave no pose, e.g. inside a wall the
+  // camera passed through) are no evidence of where the piece lies; a piece of bridged frames only keeps
+  // them.
+  std::vector<std::vector<Eigen::Vector2d>> frames(static_cast<std::size_t>(piece_count)),
+      bridged(static_cast<std::size_t>(piece_count));
+  std::unordered_map<int, Eigen::Vector2d> frame_position;
+  for (const PathFrame& f : path.frames) {
+    frame_position[f.index] = f.position();
     if (f.piece >= 0 && f.piece < piece_count)
-      frames[static_cast<std::size_t>(f.piece)].push_back(f.position());
+      ((f.flags & kFrameBridged) ? bridged : frames)[static_cast<std::size_t>(f.piece)].push_back(
+          f.position());
+  }
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    if (frames[k].empty()) frames[k] = std::move(bridged[k]);
 
   // Pieces placed in the path's own frame share it (the runs of one group of stills, pieces the tracker
   // joined): they are registered together, by all their frames and points, and move alike.
@@ -296,8 +321,8 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
     }
     SubProgress whole(sub, 0.0, 0.5);
     PieceRegistration r =
-        register_piece(k, frames[static_cast<std::size_t>(k)], by_piece[static_cast<std::size_t>(k)], raster,
-                       coarse, grid, dirs, options, whole);
+        register_piece(k, frames[static_cast<std::size_t>(k)], frame_position,
+                       by_piece[static_cast<std::size_t>(k)], raster, coarse, grid, dirs, options, whole);
     // A long piece that fits no similarity may have drifted (a heading bias bends it, passes over the same
     // wall smear apart): its first stretch, less bent, is placed instead, and the plan refinement
     // (plan_refinement.h) straightens the rest.
@@ -311,7 +336,7 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
         if (previous) length += (f.position() - previous->position()).norm();
         previous = &f;
         if (length > options.window_length_m) break;
-        window_frames.push_back(f.position());
+        if (!(f.flags & kFrameBridged)) window_frames.push_back(f.position());
         window_indices.insert(f.index);
       }
       std::vector<const PathPoint*> window_points;
@@ -319,8 +344,8 @@ RegistrationResult register_on_plan(const CameraPath& path, const std::vector<Pa
         if (p->frame >= 0 && window_indices.count(p->frame)) window_points.push_back(p);
       if (length > options.window_length_m && window_points.size() >= 100) {
         SubProgress part(sub, 0.5, 1.0, "first stretch");
-        PieceRegistration w =
-            register_piece(k, window_frames, window_points, raster, coarse, grid, dirs, options, part);
+        PieceRegistration w = register_piece(k, window_frames, frame_position, window_points, raster, coarse,
+                                             grid, dirs, options, part);
         if (w.ok) {
           w.by_window = true;
           w.message = "the whole piece fits no single placement (drift?): placed by its first " +
@@ -396,6 +421,7 @@ std::string describe(const PieceRegistration& piece) {
   o.precision(0);
   o << ", " << 100 * c.wall_share << " % of " << piece.wall_points << " wall points on walls, "
     << 100 * c.free_share << " % of frames in free space";
+  if (c.through_share >= 0.005) o << ", " << 100 * c.through_share << " % seen through walls";
   if (piece.candidates.size() > 1) {
     o.precision(2);
     o << "; next candidate scores " << piece.candidates[1].score / std::max(1e-12, c.score) << " of it";

@@ -79,11 +79,18 @@ Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& wall_points, const Pl
                        const Similarity2& start, double start_truncation_m,
                        const RegistrationOptions& options);
 
-// The final score of a placement (registration.h).
+// The final score of a placement (registration.h). `observers[i]`: where wall_points[i] was measured from
+// (the piece's frame; not finite = not known, no sight-line test), empty = none known.
 RegistrationCandidate score_placement(const std::vector<Eigen::Vector2d>& wall_points,
+                                      const std::vector<Eigen::Vector2d>& observers,
                                       const std::vector<Eigen::Vector2d>& frames, const PlanRaster& plan,
                                       const SegmentGrid& grid, const Similarity2& transform,
                                       const RegistrationOptions& options);
+
+// Whether the sight line from `camera` to `q` crosses a wall that q is not within `margin` of, more than
+// max(margin, depth_margin * |q - camera|) before q.
+bool seen_through_wall(const Eigen::Vector2d& camera, const Eigen::Vector2d& q, const SegmentGrid& grid,
+                       double margin, double depth_margin);
 
 // Plan refinement (plan_refinement.cpp, drift_fit.cpp). The wall a point `q` seen from `camera` is on: the
 // first wall the ray from the camera meets on its way to q (and `within` beyond), when q lies within

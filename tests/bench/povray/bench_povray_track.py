@@ -7,7 +7,9 @@ Installed by CMake as <build>/tests/bench/bench_povray_track (a wrapper passing 
 For each scene: renders whatever is missing from the cache (corpus.ensure; says so on stderr, with the time it
 may take), runs `plenopath track --capture FRAMES --camera-height H --json`, then `plenopath eval-path` on the
 whole path and, when the estimate carries a per-frame "piece" field, on each piece on its own (both files
-split by the estimate's piece). Figures are reported as measured, against the targets of issue #18.
+split by the estimate's piece). Figures are reported as measured, against the targets of issue #18. Frames
+the truth puts inside a wall (nothing to see) must be flagged by the tracker and are left out of the
+figures, here and on the plan.
 With --plan (default on): `track --plan plan.dxf` again, the path placed on the scene's plan by itself and
 refined on its walls (issue 19), scored as it is, in plan coordinates, with no alignment at all: position
 and heading RMS per placed piece, against issue 19's targets (5 cm, 0.2 deg), with the registration's and
@@ -58,12 +60,13 @@ def on_plan(args, d, res, truth, frames_dir):
         return out
     est = json.load(open(estimate))
     truth_by_index = {f["index"]: f for f in truth["frames"]}
+    blind = set(truth.get("frames_inside_walls", []))
     placed = {k for k, pc in enumerate(est.get("pieces", [{"placed": True}])) if pc.get("placed", True)}
     pieces = {}
     for f in est["frames"]:
         k = int(f.get("piece", 0))
         t = truth_by_index.get(f["index"])
-        if k not in placed or t is None:
+        if k not in placed or t is None or f["index"] in blind:
             continue
         e = pieces.setdefault(k, {"piece": k, "frames": 0, "p2": 0.0, "h2": 0.0})
         e["frames"] += 1
@@ -187,9 +190,16 @@ def bench_scene(scene, args):
     est = json.load(open(estimate))
     out["frames_tracked"] = len(est["frames"])
     out["whole"] = eval_path(args.plenopath, estimate, truth_file)
+    # Frames inside a wall have nothing to see: no image can place them. The tracker must flag them, and
+    # they are left out of the pieces' figures (held at the last pose, they would only measure the hold).
+    blind = set(truth.get("frames_inside_walls", []))
+    if blind:
+        flagged = sum(1 for f in est["frames"] if f["index"] in blind and int(f.get("flags", 0)) != 0)
+        out["frames_inside_walls"] = {"frames": len(blind), "flagged": flagged}
     by_piece = {}
     for f in est["frames"]:
-        by_piece.setdefault(int(f.get("piece", 0)), []).append(f)
+        if f["index"] not in blind:
+            by_piece.setdefault(int(f.get("piece", 0)), []).append(f)
     truth_by_index = {f["index"]: f for f in truth["frames"]}
     out["pieces_found"] = len(by_piece)
     out["pieces_true"] = len(truth["true_pieces"])
@@ -214,7 +224,8 @@ def bench_scene(scene, args):
         entry["pass"] = meets(entry)
         pieces.append(entry)
     out["pieces"] = pieces
-    out["pass"] = out["pieces_found"] == out["pieces_true"] and all(e["pass"] for e in pieces)
+    all_flagged = not blind or out["frames_inside_walls"]["flagged"] == len(blind)
+    out["pass"] = out["pieces_found"] == out["pieces_true"] and all(e["pass"] for e in pieces) and all_flagged
     if not args.no_plan and os.path.exists(os.path.join(d, "plan.dxf")):
         corpus.log("%s: tracking again with --plan" % scene)
         out["on_plan"] = on_plan(args, d, res, truth, frames_dir)
