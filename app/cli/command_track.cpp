@@ -425,6 +425,21 @@ Command add_track_command(CLI::App& parent) {
               if (!r.path.piece_placed(f.piece))
                 unplaced.push_back(f.file.empty() ? std::to_string(f.index) : f.file);
             registration["unplaced_stills"] = unplaced;
+            // Why each was left, as the last try next to its neighbours said it ("fit 2.9 px", "a spot
+            // 3.1 m away fits 1.04x as well").
+            std::map<int, std::string> why;
+            for (const CaptureOrderRejection& q : result.capture_order.rejected) why[q.frame] = q.reason;
+            nlohmann::json unplaced_why = nlohmann::json::array();
+            for (const PathFrame& f : r.path.frames)
+              if (!r.path.piece_placed(f.piece)) {
+                const auto at = why.find(f.index);
+                unplaced_why.push_back(
+                    {{"still", f.index},
+                     {"why", at != why.end()
+                                 ? at->second
+                                 : std::string("no placed neighbour in capture order to start from")}});
+              }
+            registration["unplaced_why"] = unplaced_why;
             if (!options->quiet && !unplaced.empty()) {
               std::cerr << "track: stills: " << unplaced.size()
                         << " still(s) could not be placed on the plan by themselves:";

@@ -82,6 +82,22 @@ e = json.load(open(sys.argv[1]))
 assert e["frames_matched"] == 6 and e["ate_max_m"] < 0.02 and e["rot_max_deg"] < 0.3, e
 PY
 
+# On the plan, with a seventh still that shows nothing (a lens cap): the six are placed, the seventh is
+# listed as unplaced with why.
+"$cli" make-sample --out "$tmp/sample" --frames 10 > /dev/null || fail "make-sample exit $?"
+mkdir -p "$tmp/capped"
+cp "$tmp"/r/frames/* "$tmp/capped/"
+convert -size 1024x512 xc:gray40 "$tmp/capped/zz_cap.png" || fail "convert cap"
+"$cli" track --stills "$tmp/capped" --camera-height 1.6 --work-width 1024 --plan "$tmp/sample/office.dxf" \
+  --out "$tmp/capped.json" --json > "$tmp/c.json" 2> "$tmp/c.err" ||
+  fail "--stills --plan exit $?: $(tail -c 600 "$tmp/c.err")"
+python3 - "$tmp/c.json" <<'PY' || fail "unplaced still not explained: $(cat "$tmp/c.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))["registration"]
+assert r["unplaced_stills"] == ["zz_cap.png"], r["unplaced_stills"]
+assert len(r["unplaced_why"]) == 1 and r["unplaced_why"][0]["still"] == 6 and r["unplaced_why"][0]["why"], r
+PY
+
 # Bad use.
 out=$("$cli" track 2>&1) && fail "track without input succeeded"
 [[ $out == *"--capture"*"--stills"* ]] || fail "unclear message: $out"

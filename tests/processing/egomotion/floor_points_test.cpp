@@ -154,6 +154,19 @@ TEST(FloorPoints, TheFloorIsTheDeepestCrowdedLevelNotTheMostCrowded) {
   EXPECT_EQ(floor_depth({}), 0.0);
 }
 
+// What stands on the floor a few cm high (a shelf's bottom board 7 cm up, skirting and cables 4 cm) shares
+// the floor's 4 % bins: the level is narrowed to the floor itself. The three bins' median alone gave 1.578
+// (1.4 % short, as the metric scale would be).
+TEST(FloorPoints, ThingsAFewCentimetresOffTheFloorDoNotRaiseIt) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> spread(0.0, 0.004);
+  std::vector<double> depths;
+  for (int k = 0; k < 100; ++k) depths.push_back(1.60 * (1 + spread(rng)));  // floor
+  for (int k = 0; k < 60; ++k) depths.push_back(1.53 * (1 + spread(rng)));   // shelf bottoms
+  for (int k = 0; k < 40; ++k) depths.push_back(1.56 * (1 + spread(rng)));   // skirting, cables
+  EXPECT_NEAR(floor_depth(depths), 1.60, 0.003);
+}
+
 TEST(FloorPoints, OptionsAreChecked) {
   FloorPointOptions o;
   o.min_depression_deg = 90;
