@@ -46,10 +46,11 @@ bool PlacementService::pick(int piece, int candidate) {
                            ? tr("Place piece %1 by candidate %2").arg(piece + 1).arg(candidate + 1)
                            : tr("Place path by candidate %1").arg(candidate + 1);
   document_.undo_stack()->push(new widgets::ReplacePartsCommand(document_, text, after, flags));
-  char line[160];
-  std::snprintf(line, sizeof line, "candidate %d: score %.2f, %.0f %% of wall points on walls", candidate + 1,
-                r.candidates[static_cast<std::size_t>(candidate)].score,
-                100.0 * r.candidates[static_cast<std::size_t>(candidate)].wall_share);
+  const RegistrationCandidate& picked = r.candidates[static_cast<std::size_t>(candidate)];
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "candidate %d: score %.2f, %.0f %% of wall points on walls, %.0f %% seen through walls",
+                candidate + 1, picked.score, 100.0 * picked.wall_share, 100.0 * picked.through_share);
   emit message(text + ": " + QString::fromUtf8(line));
   return true;
 }
