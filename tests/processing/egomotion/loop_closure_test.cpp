@@ -38,8 +38,8 @@ CameraPath there_and_back() {
   return truth;
 }
 
-TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
-  const CameraPath truth = there_and_back();
+// The office sample seen along `truth` at 768 x 384.
+std::vector<cv::Mat> render_walk(const CameraPath& truth) {
   const SyntheticScene scene = build_synthetic_scene(make_office_sample_plan());
   RenderOptions render;
   render.width = 768;
@@ -47,6 +47,12 @@ TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
   render.depth = false;
   std::vector<cv::Mat> frames;
   for (const PathFrame& f : truth.frames) frames.push_back(render_panorama(scene, f, render).rgb);
+  return frames;
+}
+
+TEST(LoopClosure, RevisitsAreRecognisedAndTiedTogether) {
+  const CameraPath truth = there_and_back();
+  const std::vector<cv::Mat> frames = render_walk(truth);
   EgomotionResult results[2];
   for (int loop = 0; loop < 2; ++loop) {
     EgomotionOptions options;
@@ -104,13 +110,7 @@ TEST(LoopClosure, AWalkRoundOneRoomIsClosed) {
     f.heading = wrap_angle(a + M_PI / 2);
     truth.frames.push_back(f);
   }
-  const SyntheticScene scene = build_synthetic_scene(make_office_sample_plan());
-  RenderOptions render;
-  render.width = 768;
-  render.height = 384;
-  render.depth = false;
-  std::vector<cv::Mat> frames;
-  for (const PathFrame& f : truth.frames) frames.push_back(render_panorama(scene, f, render).rgb);
+  const std::vector<cv::Mat> frames = render_walk(truth);
   EgomotionOptions options;
   options.camera_height_m = 1.6;
   const EgomotionResult r = EgomotionTracker::run(
