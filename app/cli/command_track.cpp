@@ -501,6 +501,7 @@ Command add_track_command(CLI::App& parent) {
                                   {"loop_closures", r.loop_closures},
                                   {"loop_frames", r.loop_frames},
                                   {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
+                                  {"tilt_prior_deg", r.refinement.tilt_prior_used_deg},
                                   {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
                                   {"anchors", anchors.size()},
                                   {"anchor_residuals", residuals},

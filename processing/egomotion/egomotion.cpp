@@ -272,6 +272,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
     } else {
       result.refinement.windows += solved.refinement.windows;
       result.refinement.iterations += solved.refinement.iterations;
+      result.refinement.tilt_prior_used_deg =
+          std::max(result.refinement.tilt_prior_used_deg, solved.refinement.tilt_prior_used_deg);
       add_flag(frames[plan.first], kFramePieceStart, "piece start: " + plan.break_reason);
     }
     if (piece_count > 1) {

@@ -579,6 +579,9 @@ void RefinementOptions::check() const {
   require_option(outlier_threshold >= 0, s + "outlier_threshold", "must be >= 0", outlier_threshold);
   require_option(tilt_prior_deg >= 0 && tilt_prior_deg <= 20, s + "tilt_prior_deg", "must be in [0, 20]",
                  tilt_prior_deg);
+  require_option(tilt_prior_from_data >= 0, s + "tilt_prior_from_data", "must be >= 0 (0 = off)",
+                 tilt_prior_from_data);
+  require_option(tilt_prior_min_deg > 0, s + "tilt_prior_min_deg", "must be > 0", tilt_prior_min_deg);
   require_option(floor_sigma >= 0, s + "floor_sigma", "must be >= 0 (0 = off)", floor_sigma);
   require_option(global_max_observations >= 0, s + "global_max_observations", "must be >= 0 (0 = no limit)",
                  global_max_observations);
@@ -642,6 +645,8 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
   // The global pass, on a thinned set of observations when there are too many (the full set is kept and
   // put back after each solve).
   const std::size_t limit = static_cast<std::size_t>(options.global_max_observations);
+  // The global passes' options: the second takes its tilt prior from what the first found.
+  RefinementOptions pass = options;
   bool thinned_any = false;
   // A thinned global pass fixed the path's shape; windows against every observation, each holding its first
   // and last poses (so the shape stays), restore the detail the thinning left out.
@@ -652,8 +657,8 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       const int last = std::min(n - 1, first + size - 1);
       const int held_from = last == n - 1 ? n : last - overlap + 1;
       const double at = begin + (end - begin) * first / n;
-      solve_range(problem, options, first, last, first == 0 ? 1 : first + overlap,
-                  options.window_max_iterations, progress, at, at, &report, held_from);
+      solve_range(problem, pass, first, last, first == 0 ? 1 : first + overlap, options.window_max_iterations,
+                  progress, at, at, &report, held_from);
       if (last == n - 1) break;
     }
   };
@@ -672,23 +677,31 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     if (graph) {
       const double middle = begin + 0.5 * (end - begin);
       if (first_time)
-        report.revisits = pose_graph_pass(problem, options, first_pose_of_point, progress, begin, middle);
+        report.revisits = pose_graph_pass(problem, pass, first_pose_of_point, progress, begin, middle);
       restore_detail(first_time ? middle : begin, end);
       return;
     }
     if (limit == 0 || problem.observations.size() <= limit) {
-      solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+      solve_range(problem, pass, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
       return;
     }
     thinned_any = true;
     std::vector<BundleObservation> all = thinned(problem.observations, limit);
     std::swap(all, problem.observations);
-    solve_range(problem, options, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
+    solve_range(problem, pass, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
     std::swap(all, problem.observations);
   };
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
     solve_global(options.global_max_iterations, windowed_share, split, true);
+    if (!problem.tilts.empty() && options.tilt_prior_from_data > 0) {
+      double sum = 0;
+      for (const Eigen::Vector2d& t : problem.tilts) sum += t.squaredNorm();
+      const double rms_deg = std::sqrt(sum / problem.tilts.size()) * 180.0 / M_PI;
+      pass.tilt_prior_deg =
+          std::clamp(options.tilt_prior_from_data * rms_deg,
+                     std::min(options.tilt_prior_min_deg, options.tilt_prior_deg), options.tilt_prior_deg);
+    }
     if (options.outlier_threshold > 0) {
       // Single precision: 4 bytes for each of tens of millions of observations.
       std::vector<float> errors;
@@ -726,6 +739,7 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     }
     if (thinned_any) restore_detail(1.0, 1.0);
   }
+  report.tilt_prior_used_deg = problem.tilts.empty() ? 0.0 : pass.tilt_prior_deg;
   report.final_rms = error_rms(problem);
   return report;
 }
