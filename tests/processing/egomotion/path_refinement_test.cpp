@@ -26,7 +26,8 @@ struct Synthetic {
 
 // tilt_deg > 0: each camera rocks (pitch and roll up to about tilt_deg, smooth plus a jolt per pose), its
 // bearings made with Eigen's rotations world_from_camera = Rz(heading) Ry(pitch) Rx(roll).
-// `floor_share` of the points on the floor (z = -1.6) between the walls, the rest on the walls.
+// `floor_share` of the points on the floor (z = -1.6) between the walls, the rest on the walls; bearings
+// with `bearing_sigma` of noise; `rear_masked`: nothing seen behind the camera (an operator there).
 Synthetic make_problem(std::uint32_t seed, double tilt_deg = 0.0, int point_count = 3000,
                        double floor_share = 0.0, double bearing_sigma = 0.0005, bool rear_masked = false) {
   Synthetic s;
