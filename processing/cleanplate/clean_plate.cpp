@@ -9,6 +9,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/cleanplate/exposure_gain.h"
 #include "processing/util/parallel_for.h"
 #include "rig/spherical.h"
 
@@ -141,34 +142,11 @@ Warped warp_onto_keyframe(const PathFrame& key, const PathFrame& n, const cv::Ma
   return out;
 }
 
-// Brings a warped neighbour to the keyframe's exposure: per channel, the median ratio over the pixels both
-// see well (not clipped, not dark) within `where` (every valid pixel when empty), on a sparse grid — a
-// median, so that a person in one of the two does not bias it; clamped, and left alone where too few
-// pixels compare or the gain is within 1 %.
+// Brings a warped neighbour to the keyframe's exposure (exposure_gain.h) over the pixels of `where` (every
+// valid pixel when empty).
 cv::Scalar match_exposure(Warped& warped, const cv::Mat& key_image, const cv::Mat& where) {
-  std::array<std::vector<float>, 3> ratios;
-  for (int v = 0; v < key_image.rows; v += 3)
-    for (int u = 0; u < key_image.cols; u += 3) {
-      if (!warped.valid.at<std::uint8_t>(v, u) || (!where.empty() && !where.at<std::uint8_t>(v, u))) continue;
-      const cv::Vec3b& k = key_image.at<cv::Vec3b>(v, u);
-      const cv::Vec3b& n = warped.image.at<cv::Vec3b>(v, u);
-      bool usable = true;
-      for (int ch = 0; ch < 3; ++ch)
-        usable = usable && k[ch] > 24 && k[ch] < 240 && n[ch] > 24 && n[ch] < 240;
-      if (!usable) continue;
-      for (int ch = 0; ch < 3; ++ch) ratios[ch].push_back(float(k[ch]) / float(n[ch]));
-    }
-  if (ratios[0].size() < 200) return cv::Scalar::all(1);
-  cv::Scalar gain;
-  bool changes = false;
-  for (int ch = 0; ch < 3; ++ch) {
-    auto mid = ratios[ch].begin() + ratios[ch].size() / 2;
-    std::nth_element(ratios[ch].begin(), mid, ratios[ch].end());
-    gain[ch] = std::clamp(double(*mid), 0.5, 2.0);
-    changes = changes || std::abs(gain[ch] - 1.0) > 0.01;
-  }
-  if (!changes) return cv::Scalar::all(1);
-  cv::multiply(warped.image, gain, warped.image);
+  const cv::Scalar gain = exposure_gain(key_image, warped.image, warped.valid, where);
+  if (gain != cv::Scalar::all(1)) cv::multiply(warped.image, gain, warped.image);
   return gain;
 }
 
