@@ -10,6 +10,7 @@
 #include "model/error.h"
 #include "model/option_check.h"
 #include "processing/cleanplate/exposure_gain.h"
+#include "processing/cleanplate/warp_geometry.h"
 #include "processing/util/parallel_for.h"
 #include "rig/spherical.h"
 
@@ -190,30 +191,6 @@ void median_of(const std::vector<Warped>& warped, const cv::Mat& where, int min_
   });
 }
 
-// Path positions in the keyframe's piece with baselines in [min_m, max_m], both directions, 2 * each_side of
-// them spread evenly over the lot (frames further apart in time see a walking person further away; near a
-// path's end, the other side gives more).
-std::vector<int> neighbours_within(const CameraPath& path, int key_position, double min_m, double max_m,
-                                   int each_side) {
-  const PathFrame& key = path.frames[static_cast<std::size_t>(key_position)];
-  const int count = static_cast<int>(path.size());
-  std::vector<int> within;
-  for (int side : {-1, 1})
-    for (int j = key_position + side; j >= 0 && j < count; j += side) {
-      const PathFrame& n = path.frames[static_cast<std::size_t>(j)];
-      if (n.piece != key.piece) break;
-      const double baseline = std::hypot(n.x - key.x, n.y - key.y);
-      if (baseline > max_m) break;
-      if (baseline >= min_m) within.push_back(j);
-    }
-  std::sort(within.begin(), within.end());
-  const std::size_t wanted = static_cast<std::size_t>(2 * each_side);
-  if (within.size() <= wanted) return within;
-  std::vector<int> out;
-  for (std::size_t i = 0; i < wanted; ++i) out.push_back(within[(i * (within.size() - 1)) / (wanted - 1)]);
-  return out;
-}
-
 // The keyframe's depth with the rig's pixels replaced by the scene behind the rig: the surroundings' depth
 // carried in (inpainted at a coarse width, the seam wrapped), and below the horizon never beyond the floor
 // plane when the camera height is known.
@@ -253,16 +230,6 @@ cv::Mat ellipse(int radius) {
   return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
 }
 
-std::vector<Eigen::Vector3f> plan_rays(double heading, int w, int h) {
-  std::vector<Eigen::Vector3f> rays(static_cast<std::size_t>(w) * h);
-  const Eigen::Matrix3d world_from_key = world_from_camera_rotation(heading);
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      rays[static_cast<std::size_t>(v) * w + u] =
-          (world_from_key * equirect_to_bearing({u + 0.5, v + 0.5}, w, h)).cast<float>();
-  return rays;
-}
-
 struct Neighbour {
   const PathFrame* pose = nullptr;
   cv::Mat image, depth;
@@ -288,8 +255,11 @@ bool explained_by_another_depth(const PathFrame& key, const cv::Vec3b& colour, c
           bearing_to_equirect(world_from_camera_rotation(n.pose->heading).transpose() * world, w, h);
       const int u = std::clamp(static_cast<int>(p.x()), 0, w - 1),
                 v = std::clamp(static_cast<int>(p.y()), 0, h - 1);
-      if (!rig_in_neighbours.empty() && rig_in_neighbours.at<std::uint8_t>(v, u)) continue;
+      // A neighbour that sees its own rig there counts against: with an operator in the rig, the frames
+      // ahead see any point near the camera through their operator, and the few frames left would agree
+      // with someone walking along with the camera by chance.
       ++seen;
+      if (!rig_in_neighbours.empty() && rig_in_neighbours.at<std::uint8_t>(v, u)) continue;
       const cv::Vec3b& c = n.image.at<cv::Vec3b>(v, u);
       int difference = 0;
       for (int ch = 0; ch < 3; ++ch)

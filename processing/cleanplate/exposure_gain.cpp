@@ -7,7 +7,8 @@
 
 namespace plenopath {
 
-cv::Scalar exposure_gain(const cv::Mat& key, const cv::Mat& image, const cv::Mat& valid, const cv::Mat& where) {
+cv::Scalar exposure_gain(const cv::Mat& key, const cv::Mat& image, const cv::Mat& valid,
+                         const cv::Mat& where) {
   struct Pair {
     cv::Vec3b key, image;
     float log_ratio;  // of the brightness (sum of the channels)
@@ -19,7 +20,8 @@ cv::Scalar exposure_gain(const cv::Mat& key, const cv::Mat& image, const cv::Mat
       const cv::Vec3b& k = key.at<cv::Vec3b>(v, u);
       const cv::Vec3b& n = image.at<cv::Vec3b>(v, u);
       bool usable = true;
-      for (int ch = 0; ch < 3; ++ch) usable = usable && k[ch] > 24 && k[ch] < 240 && n[ch] > 24 && n[ch] < 240;
+      for (int ch = 0; ch < 3; ++ch)
+        usable = usable && k[ch] > 24 && k[ch] < 240 && n[ch] > 24 && n[ch] < 240;
       if (usable) pairs.push_back({k, n, std::log(float(k[0] + k[1] + k[2]) / float(n[0] + n[1] + n[2]))});
     }
   if (pairs.size() < 200) return cv::Scalar::all(1);

@@ -15,6 +15,7 @@ namespace plenopath {
 // empty = everywhere): the pixels to compare. Pixels dark (<= 24) or clipped (>= 240) in either are left
 // out; compared on a grid of every third pixel. Returns the per-channel gain (image * gain ~ key), clamped
 // to [0.5, 2]; 1 when fewer than 200 pixels compare or no channel changes by more than 1 %.
-cv::Scalar exposure_gain(const cv::Mat& key, const cv::Mat& image, const cv::Mat& valid, const cv::Mat& where);
+cv::Scalar exposure_gain(const cv::Mat& key, const cv::Mat& image, const cv::Mat& valid,
+                         const cv::Mat& where);
 
 }  // namespace plenopath

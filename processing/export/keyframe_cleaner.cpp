@@ -1,8 +1,12 @@
 #include "processing/export/keyframe_cleaner.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
 #include "processing/cleanplate/author_edits.h"
+#include "processing/cleanplate/capture_stillness.h"
+#include "processing/cleanplate/rig_from_geometry.h"
 #include "processing/cleanplate/rig_mask.h"
 #include "rig/synthetic_camera.h"
 
@@ -33,9 +37,26 @@ KeyframeCleaner::KeyframeCleaner(const Project& project, const KeyframeCleaning&
   if (project.path.empty()) throw Error("clean plates: the project has no camera path");
   frames_ = FrameSource::open_capture(project.capture);
   if (options_.clean_plates && options_.fill_rig) {
+    SubProgress finding(progress, 0.0, 0.2, "finding the rig");
     rig_mask_ = rig_mask_of_capture([&](int k) { return frames_->read(k); }, frames_->frame_count(),
                                     cv::Size(frames_->width(), frames_->height()), project.capture.rig_mask,
-                                    {}, progress);
+                                    {}, finding);
+    // The operator the first frames do not show as still: what stays over the capture and the geometry
+    // does not explain (rig_from_geometry.h).
+    SubProgress staying(progress, 0.2, 0.4, "looking for what stays in place");
+    const CaptureStillness stillness =
+        capture_stillness([&](int k) { return frames_->read(k); }, frames_->frame_count(), {}, staying);
+    SubProgress geometry(progress, 0.4, 1.0, "finding the rig by the geometry");
+    const CameraPath& path = project.path;
+    rig_mask_ = rig_from_geometry(
+        path,
+        [&](int p) {
+          const int index = path.frames[static_cast<std::size_t>(p)].index;
+          if (index < 0 || index >= frames_->frame_count())
+            throw Error("frame " + std::to_string(index) + " is outside the capture");
+          return frames_->read(index);
+        },
+        [&](int p) { return static_depth(p, stillness.median.size()); }, rig_mask_, stillness, {}, geometry);
   }
   progress.report(1.0);
 }
@@ -46,18 +67,22 @@ double KeyframeCleaner::rig_pct() const {
   return rig_mask_.empty() ? 0.0 : 100.0 * cv::countNonZero(rig_mask_) / double(rig_mask_.total());
 }
 
-cv::Mat KeyframeCleaner::static_depth(int position) {
+cv::Mat KeyframeCleaner::static_depth(int position, cv::Size size) {
+  if (size.empty()) size = cv::Size(frames_->width(), frames_->height());
   const int index = project_.path.frames[static_cast<std::size_t>(position)].index;
-  if (index >= 0 && index < frames_->frame_count() && frames_->has_depth(index))
-    return frames_->read_depth(index);
+  if (index >= 0 && index < frames_->frame_count() && frames_->has_depth(index)) {
+    cv::Mat depth = frames_->read_depth(index);
+    if (!depth.empty() && depth.size() != size) cv::resize(depth, depth, size, 0, 0, cv::INTER_NEAREST);
+    return depth;
+  }
   if (!plan_scene_) {
     SceneOptions scene;
     scene.camera_height = project_.capture.camera_height_m > 0 ? project_.capture.camera_height_m : 1.6;
     plan_scene_ = std::make_unique<SyntheticScene>(build_synthetic_scene(project_.plan, scene));
   }
   RenderOptions render;
-  render.width = frames_->width();
-  render.height = frames_->height();
+  render.width = size.width;
+  render.height = size.height;
   render.depth = true;
   return render_panorama(*plan_scene_, project_.path.frames[static_cast<std::size_t>(position)], render)
       .depth;

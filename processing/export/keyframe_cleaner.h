@@ -55,7 +55,8 @@ class KeyframeCleaner {
   double rig_pct() const;
 
  private:
-  cv::Mat static_depth(int position);
+  // At the frames' size, or at `size` (the rig finder works at 256 wide: no need to render 2048).
+  cv::Mat static_depth(int position, cv::Size size = {});
   const Project& project_;
   KeyframeCleaning options_;
   std::unique_ptr<FrameSource> frames_;

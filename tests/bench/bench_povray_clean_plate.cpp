@@ -18,6 +18,7 @@
 
 #include "model/path_io.h"
 #include "processing/cleanplate/clean_plate.h"
+#include "processing/cleanplate/rig_from_geometry.h"
 #include "processing/cleanplate/rig_mask.h"
 #include "processing/plan/dxf_import.h"
 #include "rig/synthetic_camera.h"
@@ -93,9 +94,15 @@ int main(int argc, char** argv) {
       return it->second;
     };
     const auto rig_start = Clock::now();
-    const cv::Mat rig_mask = rig_mask_of_capture(frame, static_cast<int>(path.size()), size, std::string());
+    const cv::Mat tracker_rig =
+        rig_mask_of_capture(frame, static_cast<int>(path.size()), size, std::string());
+    cv::Mat rig_mask = tracker_rig;
+    if (!std::getenv("NO_GEOMETRY")) {
+      const CaptureStillness stillness = capture_stillness(frame, static_cast<int>(path.size()));
+      rig_mask = rig_from_geometry(path, frame, static_depth, tracker_rig, stillness);
+    }
     const double rig_seconds = seconds_since(rig_start);
-    if (rig_mask.empty()) throw std::runtime_error("no rig found in " + dir);
+    if (tracker_rig.empty()) throw std::runtime_error("no rig found in " + dir);
 
     // The truths: each truth frame without people and rig ("clean"), and without people only: the people's
     // pixels are where the frame differs from the second, the rig's where the second differs from the first.

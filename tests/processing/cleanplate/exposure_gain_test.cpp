@@ -16,9 +16,9 @@ cv::Mat textured_key() {
   for (int v = 0; v < key.rows; ++v)
     for (int u = 0; u < key.cols; ++u) {
       const int base = 60 + ((u / 9 + v / 7) * 37) % 140;
-      key.at<cv::Vec3b>(v, u) = cv::Vec3b(cv::saturate_cast<uchar>(base + rng.uniform(-6, 6)),
-                                         cv::saturate_cast<uchar>(base + 10),
-                                         cv::saturate_cast<uchar>(base - 8));
+      key.at<cv::Vec3b>(v, u) =
+          cv::Vec3b(cv::saturate_cast<uchar>(base + rng.uniform(-6, 6)), cv::saturate_cast<uchar>(base + 10),
+                    cv::saturate_cast<uchar>(base - 8));
     }
   return key;
 }
@@ -29,8 +29,8 @@ TEST(ExposureGain, AKnownGainIsFoundThoughMuchOfTheImageShowsSomethingElse) {
   const cv::Scalar truth(1 / 1.2, 1 / 1.2, 1 / 1.1);
   cv::Mat neighbour;
   cv::multiply(key, cv::Scalar(1.2, 1.2, 1.1), neighbour);
-  // ... with 55 % of its pixels showing a dark green shirt where the key sees the brighter scene (the neighbour's own
-  // operator, warped over the keyframe's view of the walls).
+  // ... with 55 % of its pixels showing a dark green shirt where the key sees the brighter scene (the
+  // neighbour's own operator, warped over the keyframe's view of the walls).
   neighbour(cv::Rect(0, 0, 282, 256)).setTo(cv::Scalar(50, 90, 40));
   const cv::Mat valid(key.size(), CV_8U, cv::Scalar(255));
   const cv::Scalar gain = exposure_gain(key, neighbour, valid, {});
