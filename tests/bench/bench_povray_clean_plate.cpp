@@ -103,6 +103,13 @@ int main(int argc, char** argv) {
     }
     const double rig_seconds = seconds_since(rig_start);
     if (tracker_rig.empty()) throw std::runtime_error("no rig found in " + dir);
+    if (!dump.empty()) {
+      fs::create_directories(dump);
+      cv::Mat rig_view = frame(static_cast<int>(path.size()) / 2).clone();
+      rig_view.setTo(cv::Scalar(0, 255, 0), rig_mask & ~tracker_rig);
+      rig_view.setTo(cv::Scalar(255, 0, 255), tracker_rig);
+      cv::imwrite((fs::path(dump) / "rig.png").string(), rig_view);  // magenta: tracker's, green: found
+    }
 
     // The truths: each truth frame without people and rig ("clean"), and without people only: the people's
     // pixels are where the frame differs from the second, the rig's where the second differs from the first.
@@ -111,7 +118,10 @@ int main(int argc, char** argv) {
       cv::Mat clean, no_people;
     };
     std::vector<Truth> truths;
-    const auto& variants = truth.at("truth_variants");
+    // A scene without truth variants: the rig alone (the dump's rig.png), no keyframe measured.
+    const nlohmann::json variants = truth.contains("truth_variants")
+                                        ? truth["truth_variants"]
+                                        : nlohmann::json{{"clean", {{"frames", {}}}}};
     for (std::size_t i = 0; i < variants.at("clean").at("frames").size(); ++i) {
       Truth t;
       t.index = variants["clean"]["frames"][i].at("index").get<int>();
