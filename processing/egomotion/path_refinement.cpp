@@ -694,14 +694,15 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
     solve_global(options.global_max_iterations, windowed_share, split, true);
-    if (!problem.tilts.empty() && options.tilt_prior_from_data > 0) {
+    auto tilt_prior_from_tilts = [&] {
       double sum = 0;
       for (const Eigen::Vector2d& t : problem.tilts) sum += t.squaredNorm();
       const double rms_deg = std::sqrt(sum / problem.tilts.size()) * 180.0 / M_PI;
-      pass.tilt_prior_deg =
-          std::clamp(options.tilt_prior_from_data * rms_deg,
-                     std::min(options.tilt_prior_min_deg, options.tilt_prior_deg), options.tilt_prior_deg);
-    }
+      return std::clamp(options.tilt_prior_from_data * rms_deg,
+                        std::min(options.tilt_prior_min_deg, options.tilt_prior_deg), options.tilt_prior_deg);
+    };
+    const bool tilts_from_data = !problem.tilts.empty() && options.tilt_prior_from_data > 0;
+    if (tilts_from_data) pass.tilt_prior_deg = tilt_prior_from_tilts();
     if (options.outlier_threshold > 0) {
       // Single precision: 4 bytes for each of tens of millions of observations.
       std::vector<float> errors;
@@ -736,6 +737,15 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       report.outliers_removed = static_cast<int>(obs.size() - kept);
       obs.resize(kept);
       solve_global(std::max(1, options.global_max_iterations / 2), split, 1.0, false);
+    }
+    // The tilts the first pass found under the wide prior are partly noise; under the narrower prior they
+    // shrink. Where they shrink much (a level camera), once more with the prior they now show.
+    if (tilts_from_data && options.tilt_prior_refit && options.outlier_threshold > 0) {
+      const double narrower = tilt_prior_from_tilts();
+      if (narrower < 0.7 * pass.tilt_prior_deg) {
+        pass.tilt_prior_deg = narrower;
+        solve_global(std::max(1, options.global_max_iterations / 2), 1.0, 1.0, false);
+      }
     }
     if (thinned_any) restore_detail(1.0, 1.0);
   }

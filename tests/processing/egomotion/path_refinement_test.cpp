@@ -315,6 +315,29 @@ TEST(PathRefinement, ALevelCameraIsHeldNearLevelByWhatTheTiltsShow) {
   EXPECT_LT(heading[1], 1.1 * heading[0] + 0.01);
 }
 
+// Noisier bearings: the first pass's tilts (all noise: the truth is level) call for a prior the second pass's
+// tilts narrow further; one more pass with that prior brings them nearer level, the headings no worse.
+TEST(PathRefinement, ALevelCameraGetsOneMorePassWhenItsTiltsNarrow) {
+  double heading[2], tilt_rms_deg[2], prior_used[2];
+  for (int refit = 0; refit < 2; ++refit) {
+    Synthetic s = make_problem(13, 0.0, 600, 0.9, 0.006, true);
+    RefinementOptions options;
+    options.tilt_prior_refit = refit;
+    const RefinementReport report = refine_bundle(s.problem, options);
+    prior_used[refit] = report.tilt_prior_used_deg;
+    heading[refit] = pose_errors(s.problem.poses, s.truth_poses).rot_rms_deg;
+    double sum = 0;
+    for (const Eigen::Vector2d& t : s.problem.tilts) sum += t.squaredNorm();
+    tilt_rms_deg[refit] = std::sqrt(sum / s.problem.tilts.size()) * 180 / M_PI;
+  }
+  std::printf("level camera, noisy: prior %.3f deg, tilts %.3f deg, heading %.4f deg; one more pass: prior "
+              "%.3f deg, tilts %.3f deg, heading %.4f deg\n",
+              prior_used[0], tilt_rms_deg[0], heading[0], prior_used[1], tilt_rms_deg[1], heading[1]);
+  EXPECT_LT(prior_used[1], 0.7 * prior_used[0]);
+  EXPECT_LT(tilt_rms_deg[1], tilt_rms_deg[0]);
+  EXPECT_LT(heading[1], 1.05 * heading[0] + 0.005);
+}
+
 // Cancelled at its first report (Ceres' first iteration), the refinement stops the solver and ends with
 // Cancelled after that one iteration, not after the dozens it needs.
 TEST(PathRefinement, CancelAfterTheFirstReportStopsTheSolver) {
