@@ -102,12 +102,11 @@ int main(int argc, char** argv) {
       rig_mask = rig_from_geometry(path, frame, static_depth, tracker_rig, stillness);
     }
     const double rig_seconds = seconds_since(rig_start);
-    if (tracker_rig.empty()) throw std::runtime_error("no rig found in " + dir);
     if (!dump.empty()) {
       fs::create_directories(dump);
       cv::Mat rig_view = frame(static_cast<int>(path.size()) / 2).clone();
-      rig_view.setTo(cv::Scalar(0, 255, 0), rig_mask & ~tracker_rig);
-      rig_view.setTo(cv::Scalar(255, 0, 255), tracker_rig);
+      if (!rig_mask.empty()) rig_view.setTo(cv::Scalar(0, 255, 0), rig_mask);
+      if (!tracker_rig.empty()) rig_view.setTo(cv::Scalar(255, 0, 255), tracker_rig);
       cv::imwrite((fs::path(dump) / "rig.png").string(), rig_view);  // magenta: tracker's, green: found
     }
 
@@ -118,6 +117,8 @@ int main(int argc, char** argv) {
       cv::Mat clean, no_people;
     };
     std::vector<Truth> truths;
+    if (truth.contains("truth_variants") && rig_mask.empty())
+      throw std::runtime_error("no rig found in " + dir);
     // A scene without truth variants: the rig alone (the dump's rig.png), no keyframe measured.
     const nlohmann::json variants = truth.contains("truth_variants")
                                         ? truth["truth_variants"]
