@@ -145,7 +145,8 @@ nlohmann::json run(const Nuisance& nuisance, int frames, int width, int mask_fra
           {"flagged_frames", r.flagged_frames},
           {"static_mask_pixels_pct", r.static_mask_fraction * 100.0},
           {"level_bearings", level},
-          {"tilt_prior_deg", options.refinement.tilt_prior_deg},
+          {"tilt_prior_deg", options.refinement.tilt_prior_deg},  // the option: the widest it may be
+          {"tilt_prior_used_deg", r.refinement.tilt_prior_used_deg},
           {"seconds_render", render_s},
           {"seconds_track", track_s}};
 }
