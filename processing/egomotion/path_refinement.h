@@ -76,9 +76,9 @@ struct RefinementOptions {
   double tilt_prior_from_data = 1.0;
   double tilt_prior_min_deg = 0.1;
   // With tilt_prior_from_data (else ignored): when the tilts the second pass found call for a prior narrower
-  // by more than 30 %, one more global pass with it (the first pass's tilts, under the wide prior, are partly noise).
-  // `people`: 0.067 / 0.018 / 0.029 -> 0.055 / 0.015 / 0.011; the other POV-Ray scenes and bench_nuisances
-  // do not narrow that much and are unchanged.
+  // by more than 30 %, one more global pass with it (the first pass's tilts, under the wide prior, are partly
+  // noise). `people`: 0.067 / 0.018 / 0.029 -> 0.055 / 0.015 / 0.011; the other POV-Ray scenes and
+  // bench_nuisances do not narrow that much and are unchanged.
   bool tilt_prior_refit = true;
   // > 0: BundleProblem::floor_points are held to one common level (a free parameter of each solve) with
   // this spread, a share of the level's depth, under a Cauchy loss: the camera rides at one height over a

@@ -330,9 +330,10 @@ TEST(PathRefinement, ALevelCameraGetsOneMorePassWhenItsTiltsNarrow) {
     for (const Eigen::Vector2d& t : s.problem.tilts) sum += t.squaredNorm();
     tilt_rms_deg[refit] = std::sqrt(sum / s.problem.tilts.size()) * 180 / M_PI;
   }
-  std::printf("level camera, noisy: prior %.3f deg, tilts %.3f deg, heading %.4f deg; one more pass: prior "
-              "%.3f deg, tilts %.3f deg, heading %.4f deg\n",
-              prior_used[0], tilt_rms_deg[0], heading[0], prior_used[1], tilt_rms_deg[1], heading[1]);
+  std::printf(
+      "level camera, noisy: prior %.3f deg, tilts %.3f deg, heading %.4f deg; one more pass: prior "
+      "%.3f deg, tilts %.3f deg, heading %.4f deg\n",
+      prior_used[0], tilt_rms_deg[0], heading[0], prior_used[1], tilt_rms_deg[1], heading[1]);
   EXPECT_LT(prior_used[1], 0.7 * prior_used[0]);
   EXPECT_LT(tilt_rms_deg[1], tilt_rms_deg[0]);
   EXPECT_LT(heading[1], 1.05 * heading[0] + 0.005);
