@@ -6,6 +6,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/cleanplate/colour_difference.h"
 
 namespace plenopath {
 
@@ -36,6 +37,20 @@ cv::Mat at_stillness_scale(const cv::Mat& image, const CaptureStillness& stillne
   return normalised(image, stillness.median.cols);
 }
 
+cv::Mat stays_in_place(const cv::Mat& image, const CaptureStillness& stillness, double min_share) {
+  const cv::Mat small = at_stillness_scale(image, stillness);
+  cv::Mat out(small.size(), CV_8U);
+  for (int v = 0; v < small.rows; ++v)
+    for (int u = 0; u < small.cols; ++u)
+      out.at<std::uint8_t>(v, u) =
+          max_channel_difference(small.at<cv::Vec3b>(v, u), stillness.median.at<cv::Vec3b>(v, u)) <=
+                      stillness.tolerance &&
+                  stillness.share.at<std::uint8_t>(v, u) >= min_share * 255
+              ? 255
+              : 0;
+  return out;
+}
+
 CaptureStillness capture_stillness(const std::function<cv::Mat(int)>& frame, int frame_count,
                                    const CaptureStillnessOptions& options, Progress& progress) {
   options.check();
@@ -64,11 +79,7 @@ CaptureStillness capture_stillness(const std::function<cv::Mat(int)>& frame, int
       }
       int within = 0;
       for (const cv::Mat& f : frames) {
-        const cv::Vec3b& c = f.at<cv::Vec3b>(v, u);
-        int difference = 0;
-        for (int ch = 0; ch < 3; ++ch)
-          difference = std::max(difference, std::abs(int(c[ch]) - int(median[ch])));
-        within += difference <= options.tolerance;
+        within += max_channel_difference(f.at<cv::Vec3b>(v, u), median) <= options.tolerance;
       }
       out.median.at<cv::Vec3b>(v, u) = median;
       out.share.at<std::uint8_t>(v, u) = static_cast<std::uint8_t>((255 * within) / n);

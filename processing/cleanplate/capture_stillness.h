@@ -37,4 +37,8 @@ CaptureStillness capture_stillness(const std::function<cv::Mat(int)>& frame, int
 // `image` (BGR, any size with the capture's aspect) at the stillness's width and brightness.
 cv::Mat at_stillness_scale(const cv::Mat& image, const CaptureStillness& stillness);
 
+// CV_8U at the stillness's size: 255 where `image` (a frame of the capture) shows what the capture shows
+// there (within the tolerance of the median) and at least `min_share` of the capture's frames do.
+cv::Mat stays_in_place(const cv::Mat& image, const CaptureStillness& stillness, double min_share);
+
 }  // namespace plenopath

@@ -9,6 +9,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/cleanplate/colour_difference.h"
 #include "processing/cleanplate/exposure_gain.h"
 #include "processing/cleanplate/warp_geometry.h"
 #include "processing/util/parallel_for.h"
@@ -260,11 +261,7 @@ bool explained_by_another_depth(const PathFrame& key, const cv::Vec3b& colour, c
       // with someone walking along with the camera by chance.
       ++seen;
       if (!rig_in_neighbours.empty() && rig_in_neighbours.at<std::uint8_t>(v, u)) continue;
-      const cv::Vec3b& c = n.image.at<cv::Vec3b>(v, u);
-      int difference = 0;
-      for (int ch = 0; ch < 3; ++ch)
-        difference = std::max(difference, std::abs(int(colour[ch]) - int(std::lround(c[ch] * n.gain[ch]))));
-      if (difference <= tolerance) ++agree;
+      if (max_channel_difference(colour, n.image.at<cv::Vec3b>(v, u), n.gain) <= tolerance) ++agree;
     }
     if (seen >= 3 && agree >= 0.5 * seen) return true;
   }
@@ -295,19 +292,12 @@ cv::Mat moves_with_camera(const PathFrame& key, const cv::Mat& key_image, const 
     for (int v = 0; v < dh; ++v)
       for (int u = 0; u < dw; ++u) {
         const cv::Vec3b& k = key_small.at<cv::Vec3b>(v, u);
-        const cv::Vec3b& same = small.at<cv::Vec3b>(v, u);
-        int raw_difference = 0;
-        for (int ch = 0; ch < 3; ++ch)
-          raw_difference =
-              std::max(raw_difference, std::abs(int(k[ch]) - int(std::lround(same[ch] * gain[ch]))));
-        if (raw_difference <= tolerance) ++raw_agree.at<std::uint8_t>(v, u);
+        if (max_channel_difference(k, small.at<cv::Vec3b>(v, u), gain) <= tolerance)
+          ++raw_agree.at<std::uint8_t>(v, u);
         if (!warped.valid.at<std::uint8_t>(v, u) || !moved.at<std::uint8_t>(v, u)) continue;
         ++warp_valid.at<std::uint8_t>(v, u);
-        const cv::Vec3b& there = warped.image.at<cv::Vec3b>(v, u);
-        int difference = 0;
-        for (int ch = 0; ch < 3; ++ch)
-          difference = std::max(difference, std::abs(int(k[ch]) - int(there[ch])));
-        if (difference <= tolerance) ++warp_agree.at<std::uint8_t>(v, u);
+        if (max_channel_difference(k, warped.image.at<cv::Vec3b>(v, u)) <= tolerance)
+          ++warp_agree.at<std::uint8_t>(v, u);
       }
   }
   const int count = static_cast<int>(neighbours.size());
@@ -376,10 +366,7 @@ cv::Mat find_movers(const PathFrame& key, const cv::Mat& key_image, const cv::Ma
         for (int du = -1; du <= 1; ++du) {
           const int y = std::clamp(v + dv, 0, h - 1), x = (u + du + w) % w;
           if (!has_consensus.at<std::uint8_t>(y, x)) continue;
-          const cv::Vec3b& c = consensus.at<cv::Vec3b>(y, x);
-          int difference = 0;
-          for (int ch = 0; ch < 3; ++ch) difference = std::max(difference, std::abs(int(k[ch]) - int(c[ch])));
-          best = std::min(best, difference);
+          best = std::min(best, max_channel_difference(k, consensus.at<cv::Vec3b>(y, x)));
         }
       if (best > options.disagreement && !depth_edges.at<std::uint8_t>(v, u) &&
           spread.at<std::uint8_t>(v, u) <= options.max_spread)

@@ -6,6 +6,7 @@
 
 #include "model/error.h"
 #include "model/option_check.h"
+#include "processing/cleanplate/colour_difference.h"
 #include "processing/cleanplate/exposure_gain.h"
 #include "processing/cleanplate/warp_geometry.h"
 #include "processing/util/parallel_for.h"
@@ -77,11 +78,8 @@ Comparison compare(const PathFrame& key, const cv::Mat& key_image, const cv::Mat
     for (int u = 0; u < w; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
       if (out.landing[i] < 0) continue;
-      const cv::Vec3b &k = key_image.at<cv::Vec3b>(v, u), &n = warped.at<cv::Vec3b>(v, u);
-      int difference = 0;
-      for (int ch = 0; ch < 3; ++ch)
-        difference = std::max(difference, std::abs(int(k[ch]) - int(std::lround(n[ch] * gain[ch]))));
-      out.agrees[i] = difference <= tolerance;
+      out.agrees[i] = max_channel_difference(key_image.at<cv::Vec3b>(v, u), warped.at<cv::Vec3b>(v, u),
+                                             gain) <= tolerance;
     }
   return out;
 }
@@ -98,12 +96,15 @@ cv::Mat rig_from_geometry(const CameraPath& path, const std::function<cv::Mat(in
   const int w = stillness.median.cols, h = stillness.median.rows;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
   cv::Size frame_size;
-  auto small_image = [&](int position) {
+  auto colour_frame = [&](int position) {
     const cv::Mat image = frame(position);
     if (image.empty() || image.type() != CV_8UC3)
       throw Error("rig from geometry: frame " + std::to_string(path.frames[position].index) +
                   " is not a colour image");
     if (frame_size.empty()) frame_size = image.size();
+    return image;
+  };
+  auto small_image = [&](const cv::Mat& image) {
     cv::Mat small;
     cv::resize(image, small, {w, h}, 0, 0, cv::INTER_AREA);
     return small;
@@ -125,24 +126,17 @@ cv::Mat rig_from_geometry(const CameraPath& path, const std::function<cv::Mat(in
     const int position = std::clamp(static_cast<int>((k + 0.5) * count / options.keyframes), 0, count - 1);
     const cv::Mat key_depth = small_depth(position);
     if (key_depth.empty()) continue;
-    const cv::Mat key_image = small_image(position);
-    const cv::Mat key_still = at_stillness_scale(frame(position), stillness);
-    for (int v = 0; v < h; ++v)
-      for (int u = 0; u < w; ++u) {
-        const cv::Vec3b &c = key_still.at<cv::Vec3b>(v, u), &m = stillness.median.at<cv::Vec3b>(v, u);
-        int difference = 0;
-        for (int ch = 0; ch < 3; ++ch) difference = std::max(difference, std::abs(int(c[ch]) - int(m[ch])));
-        if (difference <= stillness.tolerance &&
-            stillness.share.at<std::uint8_t>(v, u) >= options.min_stay_share * 255)
-          ++stays[static_cast<std::size_t>(v) * w + u];
-      }
+    const cv::Mat key_frame = colour_frame(position), key_image = small_image(key_frame);
+    const cv::Mat key_stays = stays_in_place(key_frame, stillness, options.min_stay_share);
+    for (std::size_t i = 0; i < pixels; ++i) stays[i] += key_stays.data[i] != 0;
     ++keyframes;
     const PathFrame& key = path.frames[static_cast<std::size_t>(position)];
     const std::vector<Eigen::Vector3f> rays = plan_rays(key.heading, w, h);
     for (int j : neighbours_within(path, position, options.min_baseline_m, options.max_baseline_m,
                                    options.neighbours))
       comparisons.push_back(compare(key, key_image, key_depth, rays, path.frames[static_cast<std::size_t>(j)],
-                                    small_image(j), small_depth(j), stillness.tolerance, options));
+                                    small_image(colour_frame(j)), small_depth(j), stillness.tolerance,
+                                    options));
   }
   cv::Mat known = cv::Mat::zeros(h, w, CV_8U);
   if (!rig_mask.empty()) cv::resize(rig_mask != 0, known, {w, h}, 0, 0, cv::INTER_AREA);

@@ -110,6 +110,22 @@ TEST(RigFromGeometry, NoStillnessKeepsTheRigGivenAndOptionsAreChecked) {
   const cv::Mat kept = rig_from_geometry(path, frame, depth, given, CaptureStillness{});
   EXPECT_EQ(cv::countNonZero(kept != given), 0);
   EXPECT_TRUE(rig_from_geometry(path, frame, depth, {}, CaptureStillness{}).empty());
+  // A frame that is not a colour image is an error naming it, not a crash.
+  CaptureStillness still;
+  still.median = cv::Mat(32, 64, CV_8UC3, cv::Scalar::all(100));
+  still.share = cv::Mat(32, 64, CV_8U, cv::Scalar(255));
+  still.frames = 8;
+  auto grey = [](int) { return cv::Mat(32, 64, CV_8U, cv::Scalar(100)); };
+  try {
+    rig_from_geometry(path, grey, depth, {}, still);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a colour image"), std::string::npos) << e.what();
+  }
+  // No depth anywhere: nothing to compare, the rig given is kept.
+  const cv::Mat no_depth = rig_from_geometry(
+      path, frame, [](int) { return cv::Mat(); }, given, still);
+  EXPECT_EQ(cv::countNonZero(no_depth != given), 0);
   RigFromGeometryOptions o;
   o.max_baseline_m = o.min_baseline_m;
   EXPECT_THROW(o.check(), Error);
