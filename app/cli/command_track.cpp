@@ -403,7 +403,9 @@ Command add_track_command(CLI::App& parent) {
               along.push_back({{"still", q.frame},
                                {"from", q.from_frame},
                                {"fit_px", q.pose.score_px},
-                               {"runner_up_fit_px", q.runner_up_fit_px}});
+                               {"runner_up_fit_px", q.runner_up_fit_px},
+                               {"other_pairs", q.other_pairs},
+                               {"crossing_pairs", q.crossing_pairs}});
             registration["placed_along_pairs"] = along;
             nlohmann::json by_order = nlohmann::json::array();
             for (const CaptureOrderPlacement& q : result.capture_order.placed)

@@ -78,12 +78,15 @@ int split_unscaled_groups(CameraPath* path, std::vector<PathPoint>* points) {
   return count;
 }
 
-bool pair_sees_spot(const StillsPair& pair, int placed_frame, const Eigen::Vector2d& placed_position,
-                    double placed_heading, const Eigen::Vector2d& spot, const PairPlacementOptions& options) {
+double pair_bearing_from(const StillsPair& pair, int placed_frame, double placed_heading) {
   const double turn = pair.turn_deg * M_PI / 180.0, direction = pair.direction_deg * M_PI / 180.0;
   // B = A + L (cos(hA + phi), sin(hA + phi)); seen from B, A lies at phi + pi - psi.
-  const double predicted =
-      pair.a == placed_frame ? placed_heading + direction : placed_heading + direction + M_PI - turn;
+  return pair.a == placed_frame ? placed_heading + direction : placed_heading + direction + M_PI - turn;
+}
+
+bool pair_sees_spot(const StillsPair& pair, int placed_frame, const Eigen::Vector2d& placed_position,
+                    double placed_heading, const Eigen::Vector2d& spot, const PairPlacementOptions& options) {
+  const double predicted = pair_bearing_from(pair, placed_frame, placed_heading);
   const Eigen::Vector2d to_spot = spot - placed_position;
   const double distance = to_spot.norm();
   if (!(distance > 0)) return false;
@@ -124,22 +127,41 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
     const int from = a_placed ? best->a : best->b, to = a_placed ? best->b : best->a;
     tried.insert(to);
     const PathFrame& known = *out.find_frame(from);
-    const double turn = best->turn_deg * M_PI / 180.0, direction = best->direction_deg * M_PI / 180.0;
-    // B = A + L (cos(hA + phi), sin(hA + phi)), hB = hA + psi; seen from B, A lies at phi + pi - psi.
-    const double world_direction =
-        a_placed ? known.heading + direction : known.heading + direction + M_PI - turn;
+    const double turn = best->turn_deg * M_PI / 180.0;
+    const double world_direction = pair_bearing_from(*best, from, known.heading);
     const double heading = a_placed ? known.heading + turn : known.heading - turn;
     const Eigen::Vector2d along(std::cos(world_direction), std::sin(world_direction));
     const Eigen::Vector2d side(-along.y(), along.x());
+    // The still's other pairs with placed stills: the spots tried are those every one of them sees.
+    std::vector<const StillsPair*> others;
+    int crossing = 0;
+    for (const StillsPair& p : pairs) {
+      if (&p == best || (p.a != to && p.b != to)) continue;
+      if (p.inliers < options.min_inliers || p.median_parallax_deg < 1.0) continue;
+      const int other = p.a == to ? p.b : p.a;
+      if (!placed(other)) continue;
+      others.push_back(&p);
+      const double bearing = pair_bearing_from(p, other, out.find_frame(other)->heading);
+      crossing += std::abs(std::sin(bearing - world_direction)) >= std::sin(15.0 * M_PI / 180.0);
+    }
+    const auto seen_by_others = [&](const Eigen::Vector2d& q) {
+      for (const StillsPair* p : others) {
+        const int other = p->a == to ? p->b : p->a;
+        const PathFrame& f = *out.find_frame(other);
+        if (!pair_sees_spot(*p, other, f.position(), f.heading, q, options)) return false;
+      }
+      return true;
+    };
     std::vector<Eigen::Vector2d> spots;
     for (double t = options.min_distance_m; t <= options.max_distance_m + 1e-9; t += options.step_m)
       for (double l : {0.0, -options.lateral_m, options.lateral_m}) {
         if (l != 0.0 && options.lateral_m <= 0) continue;
         const Eigen::Vector2d q = known.position() + t * along + l * side;
-        if (!options.require_line_of_sight || !crosses_any_wall(walls, known.position(), q))
+        if ((!options.require_line_of_sight || !crosses_any_wall(walls, known.position(), q)) &&
+            seen_by_others(q))
           spots.push_back(q);
       }
-    if (spots.empty()) {  // the pair points straight into a wall
+    if (spots.empty()) {  // the pair points straight into a wall, or its other pairs see it elsewhere
       r.rejected.push_back(to);
       continue;
     }
@@ -173,23 +195,13 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
       r.rejected.push_back(to);
       continue;
     }
-    // The still's other pairs with placed stills must see it where it was put: along a row of stills the
-    // walls can fit a spot a bay off, which only a pair from off the row shows.
-    bool contradicted = false;
-    for (const StillsPair& p : pairs) {
-      if (&p == best || (p.a != to && p.b != to)) continue;
-      if (p.inliers < options.min_inliers || p.median_parallax_deg < 1.0) continue;
-      const int other = p.a == to ? p.b : p.a;
-      if (!placed(other)) continue;
-      const PathFrame& q = *out.find_frame(other);
-      if (!pair_sees_spot(p, other, q.position(), q.heading, {pose.x, pose.y}, options)) contradicted = true;
-    }
-    if (contradicted) {
+    // The refined pose may leave the spots tried: the other pairs must still see it there.
+    if (!seen_by_others({pose.x, pose.y})) {
       r.rejected.push_back(to);
       continue;
     }
     out = path_with_still_placed(out, to, pose, points);
-    r.placed.push_back({to, from, pose, runner_up});
+    r.placed.push_back({to, from, pose, runner_up, static_cast<int>(others.size()), crossing});
     tried.clear();  // a newly placed still may carry others
     tried.insert(to);
     for (const PairPlacement& q : r.placed) tried.insert(q.frame);

@@ -5,6 +5,11 @@
 // apart the two are. The plan can: from a placed still, the other lies somewhere along the pair's
 // direction, turned by the pair's turn, and what it sees of the walls (still_on_plan.h) says where along
 // it. Repeated until no more stills can be placed, so a corridor of such pairs is placed one by one.
+// Along one pair a row of look-alike bays fits nearly as well every few metres; the still's other pairs
+// with placed stills say where along it: only the spots every one of them sees are tried, so pairs that
+// cross (from stills off the row) leave one short stretch, and the plan picks the spot within it. (The
+// POV-Ray gallery stills: two stills each with 3-4 right pairs, none with a length, were left for the
+// author because their strongest pair alone met a look-alike bay 1.3 and 4 m away.)
 //
 // A group of stills whose scale is not metric (its floor was not measured) knows its directions but not
 // its distances: it is split into stills of their own first, and its pairs place them one by one like any
@@ -47,7 +52,9 @@ struct PairPlacement {
   int frame = -1;       // the still placed (capture index)
   int from_frame = -1;  // through its pair with this placed still
   StillPlacement pose;
-  double runner_up_fit_px = 0.0;  // the best fit farther than ambiguity_gap_m along the pair
+  double runner_up_fit_px = 0.0;  // the best fit farther than ambiguity_gap_m among the spots tried
+  int other_pairs = 0;            // the still's other pairs with placed stills (every one sees the spot)
+  int crossing_pairs = 0;         // ... of them, those whose direction crosses from_frame's by >= 15 deg
 };
 
 struct PairPlacementReport {
@@ -72,6 +79,10 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
 // other pairs with placed stills this way, and left for the author when one disagrees.
 bool pair_sees_spot(const StillsPair& pair, int placed_frame, const Eigen::Vector2d& placed_position,
                     double placed_heading, const Eigen::Vector2d& spot, const PairPlacementOptions& options);
+
+// The plan bearing (radians) in which `pair`'s other still lies seen from its still `placed_frame`, whose
+// heading is placed_heading.
+double pair_bearing_from(const StillsPair& pair, int placed_frame, double placed_heading);
 
 // Every unplaced piece of more than one still whose scale is not metric (scale_source other than
 // "camera_height") becomes pieces of one still each, in their place in capture order; the pieces after
