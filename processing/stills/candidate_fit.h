@@ -23,8 +23,9 @@ struct CandidateFitOptions {
   int max_stills_per_piece = 6;  // spread over the piece
   int max_candidates = 5;        // scored per piece
   // The best candidate's fit must be within this, or the piece is not placed (its points found a place
-  // its stills do not agree with).
-  double max_fit_px = 2.5;
+  // its stills do not agree with). Oriented fits of right placements on the POV-Ray stills scenes reach
+  // 3.1 px; a pair pointing into the walls in the along-pairs test fits 3.46.
+  double max_fit_px = 3.25;
   void check() const;
 };
 

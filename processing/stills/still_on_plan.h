@@ -7,10 +7,10 @@
 //   - the vertical edges: a corner or a door jamb of the plan seen from the spot is a vertical line in the
 //     still at the corner's azimuth.
 // Both are drawn into the still's edge map (Canny) as curves, and the score of a pose is the mean distance
-// of the curves' pixels to the nearest edge, truncated (chamfer matching: furniture hiding a wall costs at
-// most the truncation). All headings and the positions within search_radius_m of the click are tried on a
-// coarse grid, the best few refined on a fine one; the heading for every position is a shift of the
-// plan's profile, so one ray cast per position serves all headings.
+// of the curves' pixels to the nearest edge running the same way (oriented chamfer matching), truncated
+// (furniture hiding a wall costs at most the truncation). All headings and the positions within
+// search_radius_m of the click are tried on a coarse grid, the best few refined on a fine one; the heading
+// for every position is a shift of the plan's profile, so one ray cast per position serves all headings.
 //
 // A second click may give the direction the still's centre looks (heading_hint_deg): for a room whose
 // walls look alike both ways round.
@@ -39,7 +39,10 @@ struct StillOnPlanOptions {
   double truncation_px = 8.0;         // chamfer distances are truncated here (at work_width)
   double top_above_camera_m =
       0.4;  // vertical edges are drawn from the floor up to this height above the camera
-  double nadir_limit_deg = -65.0;          // below this elevation (the tripod) nothing is compared
+  double nadir_limit_deg = -65.0;  // below this elevation (the tripod) nothing is compared
+  // Each curve pixel compared with the still's edges that run its way only (oriented chamfer matching):
+  // a tiled or patterned floor has edges every way, that fit a wall drawn anywhere over it.
+  bool oriented_edges = true;
   std::optional<double> heading_hint_deg;  // the author's second click: the still's centre looks this way
   double heading_hint_spread_deg = 30.0;   // ... give or take this
   // > 0: the best fit this far or farther from the chosen spot is reported too (elsewhere_score_px), to

@@ -37,7 +37,7 @@ struct PairPlacementOptions {
   double lateral_m = 0.1;           // and this far either side (the direction's own error)
   double heading_spread_deg = 3.0;  // the heading within this of the pair's turn
   int min_inliers = 30;             // a pair's verified matches
-  double max_fit_px = 2.5;          // a worse fit is not taken (the still is left for the author)
+  double max_fit_px = 3.25;         // a worse fit is not taken (see CandidateFitOptions::max_fit_px)
   // Along a corridor the walls look alike every few metres: the best spot farther than ambiguity_gap_m from
   // the chosen one must fit this much worse, or the still is left for the author.
   double ambiguity_gap_m = 1.0;

@@ -33,7 +33,7 @@ struct CaptureOrderPlacementOptions {
   double reach_m = 6.0;
   double coarse_step_m = 0.1;  // spots tried on this grid ...
   int coarse_width = 720;      // ... with the still compared at this width; the best refined at fit's
-  double max_fit_px = 2.5;     // a worse fit is not taken (the still is left for the author)
+  double max_fit_px = 3.25;    // a worse fit is not taken (see CandidateFitOptions::max_fit_px)
   // The best spot farther than ambiguity_gap_m from the chosen one must fit this much worse (both refined
   // at fit's width), or the still is left for the author: corridors and repeated rooms look alike.
   double ambiguity_gap_m = 1.0;

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "model/error.h"
+#include "processing/plan/dxf_import.h"
 #include "rig/synthetic_camera.h"
 
 namespace plenopath {
@@ -55,6 +57,43 @@ TEST(StillOnPlan, OneClickNearTheTripodGivesItsPose) {
     std::printf("spot (%.1f, %.1f): %.3f m, %.2f deg, fit %.2f px, runner-up %.2f px at %.0f deg, %.2f s\n",
                 spots[k].x(), spots[k].y(), position_error, heading_error, placed.score_px,
                 placed.runner_up_score_px, placed.runner_up_heading_deg, placed.seconds);
+    EXPECT_LT(position_error, 0.10) << placed.summary;
+    EXPECT_LT(heading_error, 1.0) << placed.summary;
+  }
+}
+
+// Two POV-Ray stills of the gallery hall (tests/data/stills-gallery/README.md: its chequered, glossy floor,
+// columns, walls 8-13 m away), one click 0.4 m off each (the clicks of bench_povray_stills' seeded run).
+// Matched with every edge, the columns drawn over the floor's tile edges fit best 0.8 and 1.0 m away (the
+// premise, checked); matched by orientation, each lands within 10 cm and 1 deg of the render's pose.
+TEST(StillOnPlan, ATiledFloorDoesNotPullTheWallsOverIt) {
+  const std::string dir = std::string(PLENOPATH_TEST_DATA_DIR) + "/stills-gallery/";
+  const FloorPlan plan = import_dxf(dir + "plan.dxf");
+  struct Case {
+    const char* file;
+    Eigen::Vector2d truth;
+    double heading_deg;
+    double click_angle;  // radians
+  };
+  const std::vector<Case> cases = {{"still_13.jpg", {3.5, 8.0}, -155.064685, -1.136382242594137},
+                                   {"still_16.jpg", {12.0, 13.5}, -96.229817, -1.8305898768053617}};
+  for (const Case& c : cases) {
+    const cv::Mat still = cv::imread(dir + c.file, cv::IMREAD_COLOR);
+    ASSERT_FALSE(still.empty()) << c.file;
+    const Eigen::Vector2d click =
+        c.truth + 0.4 * Eigen::Vector2d(std::cos(c.click_angle), std::sin(c.click_angle));
+    StillOnPlanOptions options;
+    options.camera_height_m = 1.6;
+    options.oriented_edges = false;
+    const StillPlacement every_edge = place_still_on_plan(still, plan, click, options);
+    options.oriented_edges = true;
+    const StillPlacement placed = place_still_on_plan(still, plan, click, options);
+    const double every_edge_error = (Eigen::Vector2d(every_edge.x, every_edge.y) - c.truth).norm();
+    const double position_error = (Eigen::Vector2d(placed.x, placed.y) - c.truth).norm();
+    const double heading_error = heading_error_deg(placed.heading_deg, c.heading_deg * M_PI / 180.0);
+    std::printf("%s: every edge %.3f m; oriented %.3f m, %.2f deg, fit %.2f px\n", c.file, every_edge_error,
+                position_error, heading_error, placed.score_px);
+    EXPECT_GT(every_edge_error, 0.5) << c.file;
     EXPECT_LT(position_error, 0.10) << placed.summary;
     EXPECT_LT(heading_error, 1.0) << placed.summary;
   }
