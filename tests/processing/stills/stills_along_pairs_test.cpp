@@ -32,24 +32,31 @@ StillsPair pair_from_truth(const PathFrame& a, const PathFrame& b, int ia, int i
   return p;
 }
 
+// One piece per still at metric scale; the stills `placed` says are at their truth, the others unplaced
+// at the origin of their own piece.
+CameraPath one_piece_per_still(const std::vector<Eigen::Vector3d>& truth, const std::vector<bool>& placed) {
+  CameraPath path;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    PathFrame f = frame_at(static_cast<int>(i), truth[i]);
+    PathPiece piece;
+    piece.first_index = piece.last_index = f.index;
+    piece.placed = placed[i];
+    piece.scale_source = "camera_height";
+    path.pieces.push_back(piece);
+    f.piece = static_cast<int>(i);
+    if (!placed[i]) f.x = f.y = f.heading = 0.0;  // unplaced: own coordinates
+    path.frames.push_back(f);
+  }
+  return path;
+}
+
 TEST(StillsAlongPairs, AChainOfPairsWithoutLengthsIsPlacedByThePlan) {
   const FloorPlan plan = make_office_sample_plan();
   // The corridor (y 6.5-7.5 in the office sample) and the lobby.
   const std::vector<Eigen::Vector3d> truth = {
       {2.0, 7.0, 0.4}, {5.2, 7.1, 2.2}, {8.6, 6.9, -0.9}, {12.5, 4.0, 1.0}};
   const std::vector<cv::Mat> stills = test::render_stills_at(plan, truth);
-  CameraPath path;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f = frame_at(static_cast<int>(i), truth[i]);
-    PathPiece piece;
-    piece.first_index = piece.last_index = f.index;
-    piece.placed = i == 0;
-    piece.scale_source = "camera_height";
-    path.pieces.push_back(piece);
-    f.piece = static_cast<int>(i);
-    if (i > 0) f.x = f.y = f.heading = 0.0;  // unplaced: own coordinates
-    path.frames.push_back(f);
-  }
+  const CameraPath path = one_piece_per_still(truth, {true, false, false, false});
   auto at = [&](int i) { return frame_at(i, truth[i]); };
   std::vector<StillsPair> pairs = {pair_from_truth(at(0), at(1), 0, 1, 60),
                                    pair_from_truth(at(1), at(2), 1, 2, 50),
@@ -115,18 +122,7 @@ TEST(StillsAlongPairs, APairFromOffTheRowSaysWhichBay) {
   const FloorPlan plan = hall_with_pillar_rows();
   const std::vector<Eigen::Vector3d> truth = {{6.0, 4.0, 0.3}, {12.0, 4.0, 1.9}, {12.0, 7.2, -2.4}};
   const std::vector<cv::Mat> stills = test::render_stills_at(plan, truth);
-  CameraPath path;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    PathFrame f = frame_at(static_cast<int>(i), truth[i]);
-    PathPiece piece;
-    piece.first_index = piece.last_index = f.index;
-    piece.placed = i != 1;
-    piece.scale_source = "camera_height";
-    path.pieces.push_back(piece);
-    f.piece = static_cast<int>(i);
-    if (i == 1) f.x = f.y = f.heading = 0.0;  // unplaced: own coordinates
-    path.frames.push_back(f);
-  }
+  const CameraPath path = one_piece_per_still(truth, {true, false, true});
   auto at = [&](int i) { return frame_at(i, truth[i]); };
   const auto read = [&](int i) { return stills[static_cast<std::size_t>(i)]; };
   const StillsPair along_the_row = pair_from_truth(at(0), at(1), 0, 1, 80);
