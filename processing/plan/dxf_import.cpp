@@ -107,8 +107,8 @@ Header read_header(const std::vector<DxfTag>& tags) {
     if (tags[i].value == "$ACADVER" && v.code == 1) h.acadver = upper(v.value);
     if (tags[i].value == "$DWGCODEPAGE" && v.code == 3) h.codepage = v.value;
     if (tags[i].value == "$INSUNITS" && v.code == 70) {
-      double u = 0.0;
-      if (dxf_number(v, &u)) h.insunits = static_cast<int>(u);
+      int u = -1;  // beyond int range: unknown (a fuzzer's 2.7e10 was undefined behaviour cast)
+      if (dxf_integer(v, &u)) h.insunits = u;
     }
   }
   return h;

@@ -225,10 +225,11 @@ TEST(DxfImport, BadFilesGiveClearErrors) {
   EXPECT_THROW(import_dxf_from_memory("0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n1e308\n", "x.dxf"), Error);
 }
 
-// Integer group codes beyond int (found by the fuzzer under UBSan: block flags 4.6e11): read as absent,
-// never converted out of range.
+// Integer group codes beyond int (found by the fuzzer under UBSan: block flags 4.6e11, $INSUNITS 2.7e10):
+// read as absent, never converted out of range.
 TEST(DxfImport, IntegerCodesBeyondIntAreIgnoredNotOverflowed) {
   const std::string dxf =
+      "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n26624838613\n0\nENDSEC\n"
       "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n"
       "0\nLAYER\n2\nWALLS\n62\n-2147483648\n70\n1e20\n"  // colour INT_MIN: off (negative), 256 at most
       "0\nENDTAB\n0\nENDSEC\n"
@@ -236,7 +237,9 @@ TEST(DxfImport, IntegerCodesBeyondIntAreIgnoredNotOverflowed) {
       "0\nLINE\n8\nWALLS\n10\n0\n20\n0\n11\n2\n21\n0\n0\nENDBLK\n0\nENDSEC\n"
       "0\nSECTION\n2\nENTITIES\n0\nINSERT\n8\nWALLS\n2\nB\n10\n1\n20\n1\n"
       "0\nLINE\n8\nWALLS\n10\n0\n20\n0\n11\n4\n21\n0\n0\nENDSEC\n0\nEOF\n";
-  const FloorPlan plan = import_dxf_from_memory(dxf, "flags.dxf");
+  DxfImportReport report;
+  const FloorPlan plan = import_dxf_from_memory(dxf, "flags.dxf", {}, &report);
+  EXPECT_NE(report.units_reason.find("no $INSUNITS"), std::string::npos) << report.units_reason;
   ASSERT_FALSE(plan.layers.empty());
   EXPECT_EQ(plan.layers[0].name, "WALLS");
   EXPECT_EQ(plan.layers[0].color, 256);
