@@ -130,8 +130,8 @@ ParallelPairs find_parallel_pairs(const std::vector<Segment2>& segments, const P
 
   std::vector<int> seen(n, -1);
   // The cells segment i has probed: neighbourhoods of consecutive cells overlap, and a crowded cell's list
-  // would be walked again for each (a fuzzed plan with thousands of segments in a few cells: 14 s under
-  // the sanitizers). Walking each cell once finds the same candidates in the same order.
+  // would be walked again for each (a fuzzed plan of 18 816 segments in 1 080 cells: 162 M visits, 57 M
+  // of them distinct). Walking each cell once finds the same candidates in the same order.
   std::unordered_set<std::int64_t> probed;
   std::vector<Candidate> best_left(n), best_right(n);
   for (int i = 0; i < n; ++i) {

@@ -66,14 +66,14 @@ double distance_to_walls(const Walls& walls, const Eigen::Vector2d& p) {
 
 // The still's edges as truncated distance maps (CV_32F, work_width x work_width / 2): Canny on the grey
 // image, thresholds from its own gradients (so exposure does not matter), across the seam. `all`: every
-// edge (what the author is shown); oriented[k]: the edges whose direction lies within 30 deg of k * 45 deg
-// (0: horizontal, 2: vertical), for oriented chamfer matching (see Scorer).
+// edge (what the author is shown); with `oriented`, also oriented[k]: the edges whose direction lies within
+// 30 deg of k * 45 deg (0: horizontal, 2: vertical), for oriented chamfer matching (see Scorer).
 struct EdgeMaps {
   cv::Mat all;
   std::array<cv::Mat, 4> oriented;
 };
 
-EdgeMaps edge_maps(const cv::Mat& still, int width, double truncation) {
+EdgeMaps edge_maps(const cv::Mat& still, int width, double truncation, bool oriented) {
   cv::Mat grey;
   if (still.channels() == 3)
     cv::cvtColor(still, grey, cv::COLOR_BGR2GRAY);
@@ -107,6 +107,7 @@ EdgeMaps edge_maps(const cv::Mat& still, int width, double truncation) {
   };
   EdgeMaps maps;
   maps.all = distance_to(edges);
+  if (!oriented) return maps;
   std::array<cv::Mat, 4> on;
   for (cv::Mat& m : on) m = cv::Mat::zeros(edges.size(), CV_8U);
   for (int r = 0; r < edges.rows; ++r)
@@ -288,7 +289,7 @@ StillPlacement place_still_at_spots(const cv::Mat& still, const FloorPlan& plan,
   const int width = options.work_width;
   const double step = 2.0 * M_PI / width;
   progress.checkpoint(0.02, "edges of the still");
-  const EdgeMaps maps = edge_maps(still, width, options.truncation_px);
+  const EdgeMaps maps = edge_maps(still, width, options.truncation_px, options.oriented_edges);
   const Scorer scorer{maps,
                       width,
                       width / 2,
@@ -459,7 +460,7 @@ std::vector<double> still_fits_px(const cv::Mat& still, const FloorPlan& plan,
   if (still.empty()) throw Error("the still is empty");
   const int width = options.work_width;
   const Walls walls = walls_of(plan);
-  const EdgeMaps maps = edge_maps(still, width, options.truncation_px);
+  const EdgeMaps maps = edge_maps(still, width, options.truncation_px, options.oriented_edges);
   const Scorer scorer{maps,
                       width,
                       width / 2,
@@ -485,17 +486,17 @@ cv::Mat draw_plan_on_still(const cv::Mat& still, const FloorPlan& plan, double x
   cv::Mat out;
   cv::resize(still, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
   if (out.channels() == 1) cv::cvtColor(out, out, cv::COLOR_GRAY2BGR);
-  const EdgeMaps maps = edge_maps(still, width, options.truncation_px);
+  const EdgeMaps maps = edge_maps(still, width, options.truncation_px, false);
   out.setTo(cv::Scalar(0, 200, 0), maps.all == 0);
   const double step = 2.0 * M_PI / width;
   const PlanProfile profile = plan_profile(walls, {x, y}, width);
-  const Scorer scorer{maps,
+  const Scorer scorer{maps,  // for row_of only
                       width,
                       height,
                       options.camera_height_m,
                       options.top_above_camera_m,
                       options.nadir_limit_deg * M_PI / 180.0,
-                      options.oriented_edges};
+                      false};
   // The pose's heading on the profile's grid (the drawing is to the nearest column).
   const int j = ((static_cast<int>(std::lround(heading_deg * M_PI / 180.0 / step)) % width) + width) % width;
   const auto dot = [&](double px, double py) {

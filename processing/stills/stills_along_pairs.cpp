@@ -132,24 +132,22 @@ CameraPath place_stills_along_pairs(const CameraPath& path, const std::vector<St
     const double heading = a_placed ? known.heading + turn : known.heading - turn;
     const Eigen::Vector2d along(std::cos(world_direction), std::sin(world_direction));
     const Eigen::Vector2d side(-along.y(), along.x());
-    // The still's other pairs with placed stills: the spots tried are those every one of them sees.
-    std::vector<const StillsPair*> others;
+    // The still's other pairs with placed stills (and those stills): the spots tried are those every one
+    // of them sees.
+    std::vector<std::pair<const StillsPair*, const PathFrame*>> others;
     int crossing = 0;
     for (const StillsPair& p : pairs) {
       if (&p == best || (p.a != to && p.b != to)) continue;
       if (p.inliers < options.min_inliers || p.median_parallax_deg < 1.0) continue;
-      const int other = p.a == to ? p.b : p.a;
-      if (!placed(other)) continue;
-      others.push_back(&p);
-      const double bearing = pair_bearing_from(p, other, out.find_frame(other)->heading);
+      const PathFrame* other = out.find_frame(p.a == to ? p.b : p.a);
+      if (!other || !out.piece_placed(other->piece)) continue;
+      others.push_back({&p, other});
+      const double bearing = pair_bearing_from(p, other->index, other->heading);
       crossing += std::abs(std::sin(bearing - world_direction)) >= std::sin(15.0 * M_PI / 180.0);
     }
     const auto seen_by_others = [&](const Eigen::Vector2d& q) {
-      for (const StillsPair* p : others) {
-        const int other = p->a == to ? p->b : p->a;
-        const PathFrame& f = *out.find_frame(other);
-        if (!pair_sees_spot(*p, other, f.position(), f.heading, q, options)) return false;
-      }
+      for (const auto& [p, f] : others)
+        if (!pair_sees_spot(*p, f->index, f->position(), f->heading, q, options)) return false;
       return true;
     };
     std::vector<Eigen::Vector2d> spots;
