@@ -1,6 +1,6 @@
 // What a real capture adds to the scene, each a deterministic function of the frame index (so any frame can
-// be rendered alone, in any order): pitch and roll from an uneven floor, the exposure's drift and steps,
-// sensor noise.
+// be rendered alone, in any order): pitch and roll from an uneven floor, a camera height that rides up and
+// down, the exposure's drift and steps, sensor noise.
 #include <cmath>
 
 #include "rig/render_internal.h"
@@ -55,6 +55,11 @@ CameraTilt camera_tilt_at_frame(const RenderOptions& o, int frame_index) {
     }
   }
   return tilt;
+}
+
+double camera_height_offset_at_frame(const RenderOptions& o, int frame_index) {
+  if (o.height_wobble_m <= 0) return 0.0;
+  return o.height_wobble_m * smooth_walk(o.tilt_seed, 8, frame_index, o.height_wobble_frames);
 }
 
 Eigen::Matrix3d world_from_tilted_camera(double heading, const CameraTilt& tilt) {

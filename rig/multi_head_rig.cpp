@@ -158,7 +158,8 @@ std::vector<cv::Mat> render_heads(const SyntheticScene& scene, const MultiHeadRi
                                   const RenderOptions& options, std::vector<cv::Mat>* depths) {
   rig.check();
   const Eigen::Matrix3d world_from_rig = world_from_camera_rotation(pose.heading);
-  const Eigen::Vector3d nodal(pose.x, pose.y, scene.options.camera_height);
+  const Eigen::Vector3d nodal(
+      pose.x, pose.y, scene.options.camera_height + camera_height_offset_at_frame(options, pose.index));
   std::vector<cv::Mat> images;
   if (depths) depths->clear();
   for (const auto& head : rig.heads) {

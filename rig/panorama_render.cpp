@@ -61,6 +61,9 @@ void RenderOptions::check() const {
                  "must be in [0, 100]", bumps_per_100_frames);
   require_option(std::abs(pitch_deg) <= 45.0, s + "pitch_deg", "must be in [-45, 45]", pitch_deg);
   require_option(std::abs(roll_deg) <= 45.0, s + "roll_deg", "must be in [-45, 45]", roll_deg);
+  require_option(height_wobble_m >= 0.0 && height_wobble_m <= 0.3, s + "height_wobble_m",
+                 "must be in [0, 0.3] m", height_wobble_m);
+  require_option(height_wobble_frames > 0.0, s + "height_wobble_frames", "must be > 0", height_wobble_frames);
   require_option(operator_distance_m >= 0.4 && operator_distance_m <= 3.0, s + "operator_distance_m",
                  "must be in [0.4, 3] m", operator_distance_m);
 }
@@ -78,7 +81,7 @@ void render_panorama(const SyntheticScene& scene, const PathFrame& pose, const R
   options.check();
   if (!scene.textures) throw Error("render_panorama: the scene was not built with build_synthetic_scene");
   const int w = options.width, h = options.height;
-  const double cam_h = scene.options.camera_height;
+  const double cam_h = scene.options.camera_height + camera_height_offset_at_frame(options, pose.index);
   const FrameContext ctx = make_context(scene, options, {pose.x, pose.y, cam_h}, pose.index);
   const CameraTilt tilt = camera_tilt_at_frame(options, pose.index);
   const std::vector<RigSolid> solids = rig_solids(options, cam_h);

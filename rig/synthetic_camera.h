@@ -161,6 +161,11 @@ struct RenderOptions {
   double pitch_deg = 0.0;  // > 0: the forward direction (centre column) points up
   double roll_deg = 0.0;   // > 0: the camera's left (azimuth -90) side up, its right side down
   std::uint32_t tilt_seed = 5;
+  // The camera's height rides up and down (a hand-held camera, a monopod carried along), a deterministic
+  // function of the frame index: a smooth random walk of standard deviation height_wobble_m changing over
+  // about height_wobble_frames frames, added to SceneOptions::camera_height. A trolley or tripod keeps 0.
+  double height_wobble_m = 0.0;
+  double height_wobble_frames = 40.0;
   // The trolley in every frame: a mast under the lens, a base frame near the floor with a box on it, and
   // a push handle behind the camera, all rigid with the camera (they tilt with it).
   bool trolley = false;
@@ -179,6 +184,8 @@ struct CameraTilt {
   bool any() const { return pitch != 0.0 || roll != 0.0; }
 };
 CameraTilt camera_tilt_at_frame(const RenderOptions& options, int frame_index);
+// The camera's height above SceneOptions::camera_height at a frame (RenderOptions::height_wobble_m), metres.
+double camera_height_offset_at_frame(const RenderOptions& options, int frame_index);
 // world_from_camera = Rz(heading) * Ry(-pitch) * Rx(roll): camera-frame bearings (rig/spherical.h) to the
 // plan frame. With no tilt it is world_from_camera_rotation(heading).
 Eigen::Matrix3d world_from_tilted_camera(double heading, const CameraTilt& tilt);
@@ -190,10 +197,11 @@ struct RenderedPanorama {
   cv::Mat depth;  // CV_32F, metres along the ray, 0 = no hit (empty when RenderOptions::depth is false)
 };
 
-// Renders the panorama seen from (pose.x, pose.y, camera_height) with heading pose.heading, tilted by
-// camera_tilt_at_frame(options, pose.index). The result is a deterministic function of the scene, the pose
-// (including pose.index, which times people, noise, exposure and tilt) and the options; thread count does
-// not change it. Depth includes the trolley and the operator when they are on.
+// Renders the panorama seen from (pose.x, pose.y, camera_height + camera_height_offset_at_frame(options,
+// pose.index)) with heading pose.heading, tilted by camera_tilt_at_frame(options, pose.index). The result is
+// a deterministic function of the scene, the pose (including pose.index, which times people, noise, exposure
+// and tilt) and the options; thread count does not change it. Depth includes the trolley and the operator
+// when they are on.
 RenderedPanorama render_panorama(const SyntheticScene& scene, const PathFrame& pose,
                                  const RenderOptions& options);
 // Same, reusing `out`'s buffers when their size fits (saves page faults when rendering many frames).

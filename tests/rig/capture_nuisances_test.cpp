@@ -1,7 +1,8 @@
 // The capture nuisances of the synthetic camera against independent truth: a tilted camera's depth against a
 // brute-force 3-D intersection along rays rotated by Eigen's own AngleAxis; where the horizon lies in the
 // depth image (a vertical wall is nearest along a column at the world horizon) for a known pitch and roll;
-// the wobble's and the exposure steps' statistics, and a render's brightness against the gain ratio.
+// the wobble's and the exposure steps' statistics, and a render's brightness against the gain ratio; a camera
+// riding up and down against the same brute-force intersection from the raised or lowered centre.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -156,6 +157,49 @@ TEST(CaptureNuisances, WobbleIsSmoothWithBumpsAndLeavesTheHeadingAlone) {
   }
 }
 
+TEST(CaptureNuisances, HeightWobbleRaisesAndLowersTheCameraSmoothly) {
+  RenderOptions o;
+  EXPECT_EQ(camera_height_offset_at_frame(o, 17), 0.0);  // off by default
+  o.height_wobble_m = 0.03;
+  double s2 = 0, worst_step = 0, previous = camera_height_offset_at_frame(o, 0);
+  const int n = 4000;
+  for (int f = 1; f <= n; ++f) {
+    const double h = camera_height_offset_at_frame(o, f);
+    s2 += h * h;
+    worst_step = std::max(worst_step, std::abs(h - previous));
+    previous = h;
+  }
+  const double rms = std::sqrt(s2 / n);
+  EXPECT_GT(rms, 0.6 * 0.03);
+  EXPECT_LT(rms, 1.3 * 0.03);
+  EXPECT_LT(worst_step, 0.006);  // smooth: over about 40 frames
+  // The render sees from the moved centre: its depth against a brute-force intersection from there.
+  const FloorPlan plan = make_office_sample_plan();
+  const SyntheticScene scene = build_synthetic_scene(plan);
+  const test::OracleScene oracle(plan);
+  o.width = 256;
+  o.height = 128;
+  std::mt19937 rng(778);
+  int checked = 0, off = 0;
+  for (int index : {5, 61, 140}) {
+    const PathFrame pose{index, "", 4.0, 7.5, 0.3, 1.0, kFrameOk, ""};
+    const double offset = camera_height_offset_at_frame(o, index);
+    ASSERT_GT(std::abs(offset), 0.002) << index;  // frames where the camera has moved
+    const cv::Mat depth = render_panorama(scene, pose, o).depth;
+    const Eigen::Vector3d origin(pose.x, pose.y, scene.options.camera_height + offset);
+    const Eigen::Matrix3d r = independent_rotation(pose.heading, 0.0, 0.0);
+    for (int k = 0; k < 2000; ++k) {
+      const int u = std::uniform_int_distribution<int>(0, o.width - 1)(rng);
+      const int v = std::uniform_int_distribution<int>(0, o.height - 1)(rng);
+      const Eigen::Vector3d d = r * equirect_to_bearing({u + 0.5, v + 0.5}, o.width, o.height);
+      const double expected = oracle.intersect(origin, d.normalized());
+      ++checked;
+      if (std::abs(depth.at<float>(v, u) - expected) > 1e-5 * std::max(1.0, expected)) ++off;
+    }
+  }
+  EXPECT_LE(off, checked / 500) << off << " of " << checked << " pixels off";
+}
+
 TEST(CaptureNuisances, ExposureStepsAreSuddenAndScaleTheImage) {
   RenderOptions o;
   EXPECT_EQ(exposure_gain_at_frame(o, 99), 1.0);
@@ -219,6 +263,12 @@ TEST(CaptureNuisances, BadOptionsAreNamed) {
   o = {};
   o.operator_distance_m = 0.1;
   EXPECT_NE(check_message(o).find("operator_distance_m"), std::string::npos);
+  o = {};
+  o.height_wobble_m = 0.5;
+  EXPECT_NE(check_message(o).find("height_wobble_m"), std::string::npos);
+  o = {};
+  o.height_wobble_frames = 0;
+  EXPECT_NE(check_message(o).find("height_wobble_frames"), std::string::npos);
   o = {};
   o.pitch_deg = 60;
   EXPECT_THROW(render_panorama(build_synthetic_scene(box_room()), PathFrame{}, o), Error);
