@@ -188,9 +188,10 @@ Command add_track_command(CLI::App& parent) {
       ->check(CLI::Range(0.0, 20.0))
       ->capture_default_str();
   sub->add_option("--floor-prior", options->floor_prior,
-                  "Points on the floor are held to one level, with this spread in percent of the camera "
-                  "height: the camera rides at one height (trolley, tripod, render), so the scale cannot "
-                  "drift along the walk (0: off, for a camera carried at a varying height)")
+                  "Points on the floor are held to one level, with at most this spread in percent of the "
+                  "camera height (narrowed to the spread the floor points show): the camera rides at one "
+                  "height (trolley, tripod, render), so the scale cannot drift along the walk (0: off, for a "
+                  "camera carried at a varying height)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
@@ -504,6 +505,7 @@ Command add_track_command(CLI::App& parent) {
                                   {"loop_frames", r.loop_frames},
                                   {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},
                                   {"tilt_prior_deg", r.refinement.tilt_prior_used_deg},
+                                  {"floor_prior_pct", 100.0 * r.refinement.floor_sigma_used},
                                   {"seconds", r.seconds_per_frame_stage + r.seconds_geometry},
                                   {"anchors", anchors.size()},
                                   {"anchor_residuals", residuals},

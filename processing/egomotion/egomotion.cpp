@@ -274,6 +274,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
       result.refinement.iterations += solved.refinement.iterations;
       result.refinement.tilt_prior_used_deg =
           std::max(result.refinement.tilt_prior_used_deg, solved.refinement.tilt_prior_used_deg);
+      result.refinement.floor_sigma_used =
+          std::max(result.refinement.floor_sigma_used, solved.refinement.floor_sigma_used);
       add_flag(frames[plan.first], kFramePieceStart, "piece start: " + plan.break_reason);
     }
     if (piece_count > 1) {

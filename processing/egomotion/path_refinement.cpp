@@ -562,6 +562,22 @@ int pose_graph_pass(BundleProblem& p, const RefinementOptions& options,
   return revisits;
 }
 
+// The floor points' spread about their common level (1.4826 x the median absolute deviation of their
+// heights), a share of the level's depth; 0 with fewer than 10 floor points below the camera.
+double floor_level_spread(const BundleProblem& p) {
+  std::vector<double> z;
+  for (int q : p.floor_points)
+    if (p.points[static_cast<std::size_t>(q)].z() < 0) z.push_back(p.points[static_cast<std::size_t>(q)].z());
+  if (z.size() < 10) return 0.0;
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const double level = median(z);
+  for (double& v : z) v = std::abs(v - level);
+  return 1.4826 * median(z) / -level;
+}
+
 }  // namespace
 
 void RefinementOptions::check() const {
@@ -583,6 +599,9 @@ void RefinementOptions::check() const {
                  tilt_prior_from_data);
   require_option(tilt_prior_min_deg > 0, s + "tilt_prior_min_deg", "must be > 0", tilt_prior_min_deg);
   require_option(floor_sigma >= 0, s + "floor_sigma", "must be >= 0 (0 = off)", floor_sigma);
+  require_option(floor_sigma_from_data >= 0, s + "floor_sigma_from_data", "must be >= 0 (0 = off)",
+                 floor_sigma_from_data);
+  require_option(floor_sigma_min > 0, s + "floor_sigma_min", "must be > 0", floor_sigma_min);
   require_option(global_max_observations >= 0, s + "global_max_observations", "must be >= 0 (0 = no limit)",
                  global_max_observations);
 }
@@ -691,6 +710,20 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     solve_range(problem, pass, 0, n - 1, 1, max_iterations, progress, begin, end, &report);
     std::swap(all, problem.observations);
   };
+  // The floor prior's spread from the floor points, measured once under the widest spread (a narrower
+  // prior pulls the points together, and measuring again would narrow it on its own evidence): before the
+  // first global pass when the points (refined by the windows) already show a narrower one; else after it,
+  // and then one more global pass runs at the end, as the first was made under a prior too wide.
+  const bool floor_from_data = options.global_max_iterations > 0 && options.floor_sigma > 0 &&
+                               options.floor_sigma_from_data > 0 && !problem.floor_points.empty();
+  auto floor_sigma_from_points = [&] {
+    const double spread = floor_level_spread(problem);
+    if (spread <= 0) return options.floor_sigma;
+    return std::clamp(options.floor_sigma_from_data * spread,
+                      std::min(options.floor_sigma_min, options.floor_sigma), options.floor_sigma);
+  };
+  if (floor_from_data) pass.floor_sigma = floor_sigma_from_points();
+  const bool floor_measured = pass.floor_sigma < options.floor_sigma;
   if (options.global_max_iterations > 0) {
     const double split = options.outlier_threshold > 0 ? windowed_share + 0.7 * (1 - windowed_share) : 1.0;
     solve_global(options.global_max_iterations, windowed_share, split, true);
@@ -703,6 +736,8 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
     };
     const bool tilts_from_data = !problem.tilts.empty() && options.tilt_prior_from_data > 0;
     if (tilts_from_data) pass.tilt_prior_deg = tilt_prior_from_tilts();
+    if (floor_from_data && !floor_measured) pass.floor_sigma = floor_sigma_from_points();
+    bool refit = pass.floor_sigma < 0.7 * options.floor_sigma && !floor_measured;
     if (options.outlier_threshold > 0) {
       // Single precision: 4 bytes for each of tens of millions of observations.
       std::vector<float> errors;
@@ -744,12 +779,14 @@ RefinementReport refine_bundle(BundleProblem& problem, const RefinementOptions& 
       const double narrower = tilt_prior_from_tilts();
       if (narrower < 0.7 * pass.tilt_prior_deg) {
         pass.tilt_prior_deg = narrower;
-        solve_global(std::max(1, options.global_max_iterations / 2), 1.0, 1.0, false);
+        refit = true;
       }
     }
+    if (refit) solve_global(std::max(1, options.global_max_iterations / 2), 1.0, 1.0, false);
     if (thinned_any) restore_detail(1.0, 1.0);
   }
   report.tilt_prior_used_deg = problem.tilts.empty() ? 0.0 : pass.tilt_prior_deg;
+  report.floor_sigma_used = problem.floor_points.empty() ? 0.0 : pass.floor_sigma;
   report.final_rms = error_rms(problem);
   return report;
 }

@@ -82,6 +82,7 @@ p = json.load(open(sys.argv[2]))
 assert s["frames"] == 3, s
 assert s["loop_closures"] == 0 and s["loop_frames"] == [], s  # three frames: nowhere to come back to
 assert 0 <= s["tilt_prior_deg"] <= 2.0, s  # the tilt prior the last global pass used, within its bounds
+assert 0 <= s["floor_prior_pct"] <= 1.0, s  # the floor prior's spread the last pass used (0: no floor points)
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
 assert len(s["pieces"]) == 1 and s["pieces"][0]["placed"] and s["pieces"][0]["frames"] == 3, s
