@@ -66,6 +66,38 @@ PY
 "$cli" eval-path --estimate "$tmp/absent.json" --truth "$tmp/truth.json" 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing estimate: exit $code"
 grep -q "absent.json" "$tmp/err.txt" || fail "missing estimate message: $(cat "$tmp/err.txt")"
+# --match file: an estimate of every third frame, numbered 0, 1, ... among those kept (as `track --stride 3`
+# numbers them), with the truth's image files: matched by name it scores exactly; by index, badly.
+python3 - "$tmp" <<'PY'
+import json, sys
+d = sys.argv[1]
+truth = json.load(open(f"{d}/truth.json"))["frames"]
+for f in truth:
+    f["file"] = "frames/%06d.png" % f["index"]
+json.dump({"units": "m", "frames": truth}, open(f"{d}/truth_files.json", "w"))
+kept = [dict(f, index=k, file="%06d.png" % f["index"]) for k, f in enumerate(truth[::3])]
+kept.append({"index": len(kept), "file": "not_in_truth.png", "x": 50.0, "y": 0.0, "heading_deg": 0.0})
+json.dump({"units": "m", "frames": kept}, open(f"{d}/strided.json", "w"))
+nameless = [{k: v for k, v in f.items() if k != "file"} for f in kept]
+json.dump({"units": "m", "frames": nameless}, open(f"{d}/nameless.json", "w"))
+PY
+"$cli" eval-path --estimate "$tmp/strided.json" --truth "$tmp/truth_files.json" --match file --json > "$tmp/s.json" \
+  || fail "match file exit $?"
+"$cli" eval-path --estimate "$tmp/strided.json" --truth "$tmp/truth_files.json" --json > "$tmp/si.json" \
+  || fail "match index exit $?"
+python3 - "$tmp/s.json" "$tmp/si.json" <<'PY' || fail "eval-path --match file: $(cat "$tmp/s.json" "$tmp/si.json")"
+import json, sys
+by_file, by_index = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert by_file["frames_matched"] == 10, by_file  # the frame whose file the truth lacks is left out
+assert by_file["ate_rms_m"] < 1e-9 and by_file["rot_rms_deg"] < 1e-9, by_file
+assert by_index["ate_pct"] > 5, by_index
+PY
+"$cli" eval-path --estimate "$tmp/nameless.json" --truth "$tmp/truth_files.json" --match file 2> "$tmp/err.txt"
+code=$?
+[[ $code -eq 1 ]] || fail "nameless estimate: exit $code"
+grep -q "nameless.json.*no file name" "$tmp/err.txt" || fail "nameless message: $(cat "$tmp/err.txt")"
+"$cli" eval-path --estimate "$tmp/strided.json" --truth "$tmp/truth_files.json" --match name 2> "$tmp/err.txt"
+[[ $? -eq 2 ]] || fail "--match name: not refused"
 
 # track on a tiny capture (three panoramas of the convention fixture, any names, natural order).
 mkdir -p "$tmp/cap"
