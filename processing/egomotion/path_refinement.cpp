@@ -16,6 +16,7 @@
 #include "processing/egomotion/bearing_cost.h"
 #include "processing/egomotion/path_evaluation.h"
 #include "processing/egomotion/pose_graph.h"
+#include "processing/util/statistics.h"
 
 namespace plenopath {
 namespace {
@@ -569,10 +570,6 @@ double floor_level_spread(const BundleProblem& p) {
   for (int q : p.floor_points)
     if (p.points[static_cast<std::size_t>(q)].z() < 0) z.push_back(p.points[static_cast<std::size_t>(q)].z());
   if (z.size() < 10) return 0.0;
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
   const double level = median(z);
   for (double& v : z) v = std::abs(v - level);
   return 1.4826 * median(z) / -level;
