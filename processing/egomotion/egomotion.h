@@ -63,6 +63,9 @@ struct EgomotionOptions {
   // A two-view turn (consecutive frames, or keyframes) this far from the turn the tracks' azimuths suggest
   // is taken for a wrong solution.
   double max_step_turn_disagreement_deg = 3.0;
+  // Frame-to-frame turns leave out the tracks that stay put in the image while the others turn (on the
+  // trolley or the operator, where the static mask missed them): a scene point cannot stay put in a turn.
+  bool turns_ignore_still_tracks = true;
   double max_step_ratio = 5.0;  // a keyframe step this many times above or below the recent median is bridged
   // ... unless 20 points or more measure it with a median relative deviation below this (a real jump: frames
   // dropped, video subsampled).

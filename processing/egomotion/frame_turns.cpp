@@ -14,6 +14,11 @@ namespace plenopath::egomotion_steps {
 namespace {
 constexpr double kLongStepParallax = 0.04;  // radians of median parallax (~2.3 deg): a long step
 constexpr double kLongStepInlierShare = 0.7;
+// A track moving less than this many pixels is still; the others' median turn this many times that: a turn
+// no scene point stays still through (but within 12 deg of the zenith or nadir).
+constexpr double kStillPixels = 3.0;
+constexpr double kStillTurnFactor = 5.0;
+constexpr double kStillShare = 0.1;  // ... and the still tracks are at least this share of them
 }  // namespace
 
 void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937& rng,
@@ -32,11 +37,31 @@ void measure_frame_turns(const std::vector<double>& ring_headings, std::mt19937&
   const double max_disagreement = m->options->max_step_turn_disagreement_deg * M_PI / 180.0;
   for (int f = 1; f < n; ++f) {
     const double ring_turn = ring_headings[f] - ring_headings[f - 1];
+    // Tracks that stay put in the image while the others turn are on what the camera carries along (the
+    // trolley, the operator, where the static mask missed them); a scene point cannot stay put in a turn.
+    // Left in, they pull the median turn towards none (POV-Ray `people` every 2nd frame, 19 deg a frame
+    // round a corner: a third of the tracks, turns 15 instead of 18 deg).
+    const double still = kStillPixels * m->pixel_angle;
+    std::vector<double> moving_turns;
+    int continued = 0;
+    for (int t : view.frame_tracks(f)) {
+      if (!view.seen(t, f - 1)) continue;
+      ++continued;
+      const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
+      if (std::atan2(a.cross(b).norm(), a.dot(b)) >= still)
+        moving_turns.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
+    }
+    // (A few still tracks right above or below the camera are the scene's: only a rig's many are left out.)
+    const bool skip_still = m->options->turns_ignore_still_tracks &&
+                            static_cast<int>(moving_turns.size()) >= m->two_view.min_inliers &&
+                            continued - static_cast<int>(moving_turns.size()) >= kStillShare * continued &&
+                            std::abs(median(moving_turns)) > kStillTurnFactor * still;
     std::vector<Eigen::Vector3d> ba, bb;
     std::vector<double> azimuth_change;
     for (int t : view.frame_tracks(f)) {
       if (!view.seen(t, f - 1)) continue;
       const Eigen::Vector3d a = view.bearing(t, f - 1), b = view.bearing(t, f);
+      if (skip_still && std::atan2(a.cross(b).norm(), a.dot(b)) < still) continue;
       azimuth_change.push_back(std::remainder(std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x()), 2 * M_PI));
       // A spread subset is plenty for the two-view turn (tracks are in detection order, i.e. spread).
       if (ba.size() < 240 && (azimuth_change.size() % 2 == 1 || view.frame_tracks(f).size() < 480)) {
