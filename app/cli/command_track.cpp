@@ -112,6 +112,8 @@ Command add_track_command(CLI::App& parent) {
     std::string mask;                    // image of the pixels not to use (black), e.g. the trolley
     bool level = false;                  // per-frame pitch/roll from vertical edges
     double tilt_prior = RefinementOptions{}.tilt_prior_deg;
+    double step_check = EgomotionOptions{}.step_map_check_factor;
+    int floor_steps = EgomotionOptions{}.floor_step_min_points;
     double floor_prior = 100.0 * RefinementOptions{}.floor_sigma;  // percent of the floor's depth
     bool no_static_mask = false;
     std::string mask_out;  // the mask used, written as an image
@@ -193,6 +195,16 @@ Command add_track_command(CLI::App& parent) {
                   "height (trolley, tripod, render), so the scale cannot drift along the walk (0: off, for a "
                   "camera carried at a varying height)")
       ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--step-check", options->step_check,
+                  "A keyframe step is taken from the points triangulated so far when they place the frame "
+                  "with this many times the support of the two-view step (0: never)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  sub->add_option("--floor-steps", options->floor_steps,
+                  "With the floor prior, a keyframe step is measured on the floor when this many floor "
+                  "tracks agree on it (0: never)")
+      ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   sub->add_flag("--no-loop-closure", options->no_loop_closure,
                 "Do not tie places the walk comes back to (e.g. rooms that look alike)");
@@ -279,6 +291,8 @@ Command add_track_command(CLI::App& parent) {
         eo.loop.enabled = !options->no_loop_closure;
         eo.klt.level_bearings = options->level;
         eo.refinement.tilt_prior_deg = options->tilt_prior;
+        eo.step_map_check_factor = options->step_check;
+        eo.floor_step_min_points = options->floor_steps;
         eo.refinement.floor_sigma = options->floor_prior / 100.0;
         if (options->no_static_mask) eo.static_mask.frames = 0;
         if (!options->mask.empty()) {
@@ -491,6 +505,8 @@ Command add_track_command(CLI::App& parent) {
         nlohmann::json summary = {{"capture", options->capture},
                                   {"pieces", pieces},
                                   {"joins", r.joins},
+                                  {"steps_from_points", r.steps_from_points},
+                                  {"steps_on_floor", r.steps_on_floor},
                                   {"frames", r.path.size()},
                                   {"first_index", positions.empty() ? 0 : positions.front()},
                                   {"last_index", positions.empty() ? 0 : positions.back()},

@@ -51,6 +51,14 @@ void EgomotionOptions::check() const {
                  "must be in (0, 1)", keyframe_min_shared);
   require_option(max_step_ratio > 1, s + "max_step_ratio", "must be > 1", max_step_ratio);
   require_option(max_step_spread >= 0, s + "max_step_spread", "must be >= 0", max_step_spread);
+  require_option(step_map_check_factor == 0 || step_map_check_factor >= 1, s + "step_map_check_factor",
+                 "must be 0 (no check) or >= 1", step_map_check_factor);
+  require_option(floor_step_min_points >= 0, s + "floor_step_min_points", "must be >= 0 (0 = never)",
+                 floor_step_min_points);
+  require_option(floor_step_max_spread > 0, s + "floor_step_max_spread", "must be > 0",
+                 floor_step_max_spread);
+  require_option(step_map_check_deg > 0 && step_map_check_deg < 180, s + "step_map_check_deg",
+                 "must be in (0, 180)", step_map_check_deg);
   require_option(max_step_turn_disagreement_deg > 0, s + "max_step_turn_disagreement_deg", "must be > 0",
                  max_step_turn_disagreement_deg);
   require_option(min_triangulation_deg > 0, s + "min_triangulation_deg", "must be > 0",
@@ -262,6 +270,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
     }
     result.observations += solved.observations;
     result.merged_points += solved.merged_points;
+    result.steps_from_points += solved.steps_from_points;
+    result.steps_on_floor += solved.steps_on_floor;
     result.loop_closures += static_cast<int>(solved.loop_frames.size());
     result.loop_frames.insert(result.loop_frames.end(), solved.loop_frames.begin(), solved.loop_frames.end());
     if (k == 0) {

@@ -70,6 +70,18 @@ struct EgomotionOptions {
   // ... unless 20 points or more measure it with a median relative deviation below this (a real jump: frames
   // dropped, video subsampled).
   double max_step_spread = 0.1;
+  // A keyframe step is checked against the points triangulated so far: when resection against them (from
+  // where the last speed would carry the camera) explains this many times as many of them as the step
+  // measured by two-view geometry, and at least resection_min_points, the resected step is taken (0 = no
+  // check). Only a gross disagreement switches: on the walks that track well the two agree.
+  double step_map_check_factor = 2.0;
+  double step_map_check_deg = 20.0;  // ... when the two directions differ by more than this
+  // With the floor prior (refinement.floor_sigma > 0: the camera rides at one height), the chaining measures
+  // a keyframe step on the floor once the first keyframes have shown its level: from this many floor tracks
+  // (0 = never), when they agree within this share of the step (median absolute deviation) and more
+  // precisely (that deviation over the square root of the count) than the points known so far.
+  int floor_step_min_points = 8;
+  double floor_step_max_spread = 0.15;
   double min_triangulation_deg = 1.0;  // rays of a point must span at least this angle
   double max_initial_error_deg = 1.0;  // observations this far off after initialisation are dropped
   int min_point_keyframes = 3;         // a point enters the refinement when seen from this many keyframes
@@ -101,9 +113,11 @@ struct EgomotionResult {
   // One pose per frame, headings radians; frame 0 at (0, 0), heading 0. In pieces (path.pieces) where the
   // images do not connect: each later piece unplaced, its first frame at (0, 0), heading 0.
   CameraPath path;
-  int joins = 0;                      // stretches without tracks whose two sides descriptor matches connected
-  std::vector<int> continued_tracks;  // per frame: KLT tracks continued into it from the frame before
-  std::vector<double> ring_headings;  // step 1's headings per frame (radians, frame 0 = 0)
+  int joins = 0;              // stretches without tracks whose two sides descriptor matches connected
+  int steps_from_points = 0;  // keyframe steps taken from the points, not two-view (step_map_check_factor)
+  int steps_on_floor = 0;     // keyframe steps measured on the floor (floor_step_min_points)
+  std::vector<int> continued_tracks;          // per frame: KLT tracks continued into it from the frame before
+  std::vector<double> ring_headings;          // step 1's headings per frame (radians, frame 0 = 0)
   std::vector<double> tracked_headings;       // frame-to-frame turns from the KLT tracks, chained (radians)
   std::vector<Eigen::Vector3d> coarse_poses;  // step 2's (x, y, heading) per frame, final scale
   std::vector<int> keyframes;                 // frame indices

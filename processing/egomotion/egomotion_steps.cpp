@@ -64,6 +64,39 @@ int resect_pose(Eigen::Vector3d* pose, const std::vector<Eigen::Vector3d>& point
   return inliers;
 }
 
+StepCheck check_step_against_points(const Eigen::Vector2d& a, const Eigen::Vector2d& measured,
+                                    const Eigen::Vector2d& predicted, double heading_b,
+                                    const std::vector<Eigen::Vector3d>& points,
+                                    const std::vector<Eigen::Vector3d>& bearings, double huber,
+                                    double inlier_threshold, double factor, int min_points, double min_turn) {
+  StepCheck out;
+  out.position = measured;
+  auto explained = [&](const Eigen::Vector2d& b) {
+    const Eigen::Vector3d pose(b.x(), b.y(), heading_b);
+    int count = 0;
+    for (std::size_t q = 0; q < points.size(); ++q)
+      count += ray_error(pose, points[q], bearings[q]) < inlier_threshold;
+    return count;
+  };
+  Eigen::Vector3d resected(predicted.x(), predicted.y(), heading_b);
+  resect_pose(&resected, points, bearings, huber, inlier_threshold);
+  // The heading stays the tracked one: only the step is in question.
+  const Eigen::Vector2d position = resected.head<2>();
+  out.explained_measured = explained(measured);
+  out.explained_resected = explained(position);
+  const Eigen::Vector2d step_measured = measured - a, step_resected = position - a;
+  if (step_measured.norm() <= 0 || step_resected.norm() <= 0) return out;
+  const double turn = std::abs(std::remainder(
+      std::atan2(step_resected.y(), step_resected.x()) - std::atan2(step_measured.y(), step_measured.x()),
+      2 * M_PI));
+  if (turn > min_turn && out.explained_resected >= min_points &&
+      out.explained_resected >= factor * out.explained_measured) {
+    out.replaced = true;
+    out.position = position;
+  }
+  return out;
+}
+
 int resect_tilted_pose(Eigen::Vector3d* pose, Eigen::Vector2d* tilt,
                        const std::vector<Eigen::Vector3d>& points,
                        const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold,

@@ -32,6 +32,21 @@ int resect_tilted_pose(Eigen::Vector3d* pose, Eigen::Vector2d* tilt,
                        const std::vector<Eigen::Vector3d>& points,
                        const std::vector<Eigen::Vector3d>& bearings, double huber, double inlier_threshold,
                        double tilt_weight);
+// Step 2's check of a keyframe step against the points triangulated so far (`points`, seen from keyframe b
+// along `bearings`, b's camera frame): b resected against them from `predicted` (where the last speed would
+// carry it), at b's heading, explains how many of them, against b placed at `measured` (the two-view step).
+// The step is replaced by the resected one when the two directions from `a` differ by more than
+// `min_turn` radians and the resected position explains at least `min_points` and `factor` times as many.
+struct StepCheck {
+  bool replaced = false;
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // b's: the resected one when replaced, else measured
+  int explained_measured = 0, explained_resected = 0;
+};
+StepCheck check_step_against_points(const Eigen::Vector2d& a, const Eigen::Vector2d& measured,
+                                    const Eigen::Vector2d& predicted, double heading_b,
+                                    const std::vector<Eigen::Vector3d>& points,
+                                    const std::vector<Eigen::Vector3d>& bearings, double huber,
+                                    double inlier_threshold, double factor, int min_points, double min_turn);
 // Merges the points of each verified pair of tracks (union-find; the earlier point stays), rewrites the
 // observations and the track-to-point map. Returns how many points were merged away.
 int merge_loop_points(const std::vector<LoopMatch>& loops, BundleProblem* problem,
@@ -112,6 +127,8 @@ struct PieceSolution {
   // The refined points (each with at least one observation left), same scale and gauge as the poses.
   std::vector<PathPoint> tracked_points;
   int points = 0, observations = 0, merged_points = 0, floor_points = 0;
+  int steps_from_points = 0;  // keyframe steps the points contradicted, taken from them instead
+  int steps_on_floor = 0;     // keyframe steps measured on the floor
   RefinementReport refinement;
   std::vector<std::pair<int, int>> loop_frames;
   std::string scale_source = "relative";

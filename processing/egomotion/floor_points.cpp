@@ -1,7 +1,9 @@
 #include "processing/egomotion/floor_points.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "model/option_check.h"
@@ -115,6 +117,32 @@ std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPoin
   }
   std::sort(floor.begin(), floor.end());
   return floor;
+}
+
+FloorStep floor_step(const FloorStepInput& input, double min_depression, double min_motion) {
+  FloorStep out;
+  const double min_sin = std::sin(min_depression);
+  const Eigen::Matrix3d world_from_a = Eigen::AngleAxisd(input.heading_a, Eigen::Vector3d::UnitZ()).matrix();
+  const Eigen::Matrix3d world_from_b = Eigen::AngleAxisd(input.heading_b, Eigen::Vector3d::UnitZ()).matrix();
+  std::vector<double> lengths;
+  const std::vector<Eigen::Vector3d>&bearings_a = *input.bearings_a, &bearings_b = *input.bearings_b;
+  for (std::size_t q = 0; q < bearings_a.size() && q < bearings_b.size(); ++q) {
+    const Eigen::Vector3d& ca = bearings_a[q];
+    const Eigen::Vector3d& cb = bearings_b[q];
+    if (ca.z() > -min_sin || cb.z() > -min_sin) continue;
+    if (std::atan2(ca.cross(cb).norm(), ca.dot(cb)) < min_motion) continue;
+    // The floor point from each centre: level * (horizontal part) / (depth share) of the bearing.
+    const Eigen::Vector3d a = world_from_a * ca, b = world_from_b * cb;
+    const Eigen::Vector2d step = input.level * (a.head<2>() / -a.z() - b.head<2>() / -b.z());
+    lengths.push_back(step.dot(input.direction));
+  }
+  out.points = static_cast<int>(lengths.size());
+  if (lengths.empty()) return out;
+  out.length = median(lengths);
+  std::vector<double> deviation;
+  for (double l : lengths) deviation.push_back(std::abs(l - out.length));
+  out.spread = out.length > 0 ? median(deviation) / out.length : std::numeric_limits<double>::infinity();
+  return out;
 }
 
 }  // namespace plenopath

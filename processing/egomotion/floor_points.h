@@ -4,6 +4,7 @@
 // so every floor point lies at one level below the camera centres (z = 0). Tied to that level, the points
 // make the scale observable along the whole walk, and the chained steps cannot shrink or grow
 // (monocular scale drift).
+#include <Eigen/Core>
 #include <vector>
 
 #include "processing/egomotion/path_refinement.h"
@@ -28,5 +29,25 @@ double floor_depth(const std::vector<double>& depths);
 // drifted is classified as well as one that has not). Tables, benches and reflections in a glossy floor
 // are mostly left out; the prior's robust loss takes care of the rest.
 std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options = {});
+
+// A step between two keyframes measured on the floor (the chaining's, piece_solver.cpp), with no point
+// triangulated before: the camera rides at `level` above a flat floor, so a floor point seen at a depression
+// e lies level / tan(e) away from either keyframe, and each track seen at least `min_depression` (radians)
+// down from both gives the step's length along `direction` (unit, plan). Bearings are in each camera's frame
+// (level cameras with the given headings, radians). Tracks whose bearing moves less than `min_motion`
+// (radians) in the camera's frame stay with the camera (the trolley, the operator): they are skipped.
+struct FloorStep {
+  double length = 0.0;  // the median of the tracks' lengths (0: none)
+  int points = 0;       // tracks that measured it
+  double spread = 0.0;  // their median absolute deviation from it, a share of it (infinity when length <= 0)
+};
+struct FloorStepInput {
+  const std::vector<Eigen::Vector3d>* bearings_a = nullptr;  // camera frame of keyframe a, unit
+  const std::vector<Eigen::Vector3d>* bearings_b = nullptr;  // the same tracks from b
+  double heading_a = 0.0, heading_b = 0.0;
+  double level = 0.0;  // the floor's depth below the camera centres
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
+};
+FloorStep floor_step(const FloorStepInput& input, double min_depression, double min_motion);
 
 }  // namespace plenopath

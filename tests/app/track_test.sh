@@ -115,6 +115,7 @@ assert s["frames"] == 3, s
 assert s["loop_closures"] == 0 and s["loop_frames"] == [], s  # three frames: nowhere to come back to
 assert 0 <= s["tilt_prior_deg"] <= 2.0, s  # the tilt prior the last global pass used, within its bounds
 assert 0 <= s["floor_prior_pct"] <= 1.0, s  # the floor prior's spread the last pass used (0: no floor points)
+assert 0 <= s["steps_on_floor"] < s["keyframes"] and 0 <= s["steps_from_points"] < s["keyframes"], s
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
 assert len(s["pieces"]) == 1 and s["pieces"][0]["placed"] and s["pieces"][0]["frames"] == 3, s
@@ -159,6 +160,12 @@ grep -q -- "--tilt-prior" "$tmp/err.txt" || fail "--tilt-prior message: $(cat "$
 "$cli" track --capture "$tmp/cap" --floor-prior -1 --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 2 ]] || fail "--floor-prior -1: exit $code"
 grep -q -- "--floor-prior" "$tmp/err.txt" || fail "--floor-prior message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --step-check -1 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -eq 2 ]] || fail "--step-check -1: exit $code"
+grep -q -- "--step-check" "$tmp/err.txt" || fail "--step-check message: $(cat "$tmp/err.txt")"
+"$cli" track --capture "$tmp/cap" --step-check 0.5 --quiet 2> "$tmp/err.txt"; code=$?
+[[ $code -ne 0 ]] || fail "--step-check 0.5 accepted"
+grep -q "step_map_check_factor" "$tmp/err.txt" || fail "--step-check 0.5 message: $(cat "$tmp/err.txt")"
 "$cli" track --capture "$tmp/cap" --mask "$tmp/no-such-mask.png" --quiet 2> "$tmp/err.txt"; code=$?
 [[ $code -eq 1 ]] || fail "missing mask: exit $code"
 grep -q "no-such-mask.png" "$tmp/err.txt" || fail "missing mask message: $(cat "$tmp/err.txt")"

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -411,6 +412,20 @@ TEST(Egomotion, BadOptionsAndInputsAreReported) {
     EXPECT_STREQ(e.what(), "EgomotionOptions.keyframe_parallax_deg must be > 0, got -1");
   }
   EXPECT_THROW(EgomotionTracker{options}, Error);
+  auto refused = [](const std::function<void(EgomotionOptions&)>& set, const std::string& field) {
+    EgomotionOptions o;
+    set(o);
+    try {
+      o.check();
+      ADD_FAILURE() << field << ": no throw";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("EgomotionOptions." + field), std::string::npos) << e.what();
+    }
+  };
+  refused([](EgomotionOptions& o) { o.step_map_check_factor = 0.5; }, "step_map_check_factor");
+  refused([](EgomotionOptions& o) { o.step_map_check_deg = 0; }, "step_map_check_deg");
+  refused([](EgomotionOptions& o) { o.floor_step_min_points = -1; }, "floor_step_min_points");
+  refused([](EgomotionOptions& o) { o.floor_step_max_spread = 0; }, "floor_step_max_spread");
   EgomotionTracker tracker{EgomotionOptions{}};
   EXPECT_THROW(tracker.finish(), Error);                               // no frames
   EXPECT_THROW(tracker.add_frame(cv::Mat(100, 100, CV_8UC3)), Error);  // not 2:1

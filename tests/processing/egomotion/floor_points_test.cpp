@@ -222,5 +222,68 @@ TEST(FloorPoints, OptionsAreChecked) {
   EXPECT_THROW(r.check(), Error);
 }
 
+// The step from b's pose to a's measured on the floor: camera-frame bearings of floor points (z = -level),
+// of points on the walls and a table (not on the floor, a minority), and of the trolley and its operator
+// (fixed in the camera's frame: they turn with it). Truth: the poses the bearings were made from.
+TEST(FloorStep, MeasuresTheStepFromTheFloorAlone) {
+  const double level = 1.5;
+  const Eigen::Vector3d a(2.0, 1.0, 0.3), b(2.0 + 0.31 * std::cos(0.5), 1.0 + 0.31 * std::sin(0.5), 0.62);
+  auto camera_bearing = [](const Eigen::Vector3d& pose, const Eigen::Vector3d& point) {
+    const Eigen::Vector3d d = point - Eigen::Vector3d(pose.x(), pose.y(), 0.0);
+    return (Eigen::AngleAxisd(-pose.z(), Eigen::Vector3d::UnitZ()) * d).normalized().eval();
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.0005);  // about a tenth of a pixel at 1024 wide
+  auto noisy = [&](Eigen::Vector3d v) {
+    v += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    return v.normalized().eval();
+  };
+  std::vector<Eigen::Vector3d> from_a, from_b;
+  for (int k = 0; k < 60; ++k) {  // the floor, 1-3 m around the cameras
+    const double angle = M_PI * u(rng), distance = 2.0 + u(rng);
+    const Eigen::Vector3d p(a.x() + distance * std::cos(angle), a.y() + distance * std::sin(angle), -level);
+    from_a.push_back(noisy(camera_bearing(a, p)));
+    from_b.push_back(noisy(camera_bearing(b, p)));
+  }
+  for (int k = 0; k < 15; ++k) {  // wall bases and a table top, seen steeply too
+    const Eigen::Vector3d p(a.x() + 1.2 + 0.5 * u(rng), a.y() + u(rng), -0.75 + 0.3 * u(rng));
+    from_a.push_back(noisy(camera_bearing(a, p)));
+    from_b.push_back(noisy(camera_bearing(b, p)));
+  }
+  for (int k = 0; k < 70; ++k) {  // the trolley and the operator: the same bearing from both
+    const Eigen::Vector3d rig = Eigen::Vector3d(u(rng), u(rng), -1.0 - 0.4 * std::abs(u(rng))).normalized();
+    from_a.push_back(noisy(rig));
+    from_b.push_back(noisy(rig));
+  }
+  for (int k = 0; k < 30; ++k) {  // the ceiling and far walls: not seen steeply down, not used
+    const Eigen::Vector3d p(a.x() + 4 * u(rng), a.y() + 4 * u(rng), 1.3);
+    from_a.push_back(noisy(camera_bearing(a, p)));
+    from_b.push_back(noisy(camera_bearing(b, p)));
+  }
+  FloorStepInput in;
+  in.bearings_a = &from_a;
+  in.bearings_b = &from_b;
+  in.heading_a = a.z();
+  in.heading_b = b.z();
+  in.level = level;
+  in.direction = Eigen::Vector2d(std::cos(0.5), std::sin(0.5));
+  const double deg = M_PI / 180.0, pixel = 2 * M_PI / 1024;
+  const FloorStep step = floor_step(in, 25 * deg, 3 * pixel);
+  EXPECT_NEAR(step.length, 0.31, 0.003);  // 1 %
+  EXPECT_GE(step.points, 50);             // the floor's, less those seen under 25 deg
+  EXPECT_LE(step.points, 75);             // never the rig's (70 more)
+  EXPECT_LT(step.spread, 0.05);
+  // In another unit (the chaining's): the step scales with the level.
+  in.level = 3.0;
+  EXPECT_NEAR(floor_step(in, 25 * deg, 3 * pixel).length, 0.62, 0.006);
+  // Nothing seen steeply down: no step.
+  const std::vector<Eigen::Vector3d> level_only(5, Eigen::Vector3d::UnitX());
+  in.bearings_a = in.bearings_b = &level_only;
+  const FloorStep none = floor_step(in, 25 * deg, 3 * pixel);
+  EXPECT_EQ(none.points, 0);
+  EXPECT_EQ(none.length, 0.0);
+}
+
 }  // namespace
 }  // namespace plenopath
