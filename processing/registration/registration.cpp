@@ -206,10 +206,48 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
   mean /= static_cast<double>(wall.size());
   std::vector<Placement> refined;
   std::vector<RegistrationCandidate> scored;
+  // The search's translation is a coarse cell's corner; along a corridor the few walls across it hold the
+  // refinement loosely and the scale takes up the rest, so a start a cell off can settle a cell off (the
+  // POV-Ray trolley walk: 0.25 m, scale 1.016, score 0.34 against 0.47 from the truth). The refinement
+  // also starts a cell either way along the plan's two main directions, on at most 10 000 of the points
+  // (an even sample), and the start whose refinement scores best is refined with them all.
+  std::vector<Eigen::Vector2d> nudges = {Eigen::Vector2d::Zero()};
+  if (options.nudged_starts) {
+    const double main_direction = plan_dirs.empty() ? 0.0 : plan_dirs.front();
+    for (int quarter = 0; quarter < 4; ++quarter)
+      nudges.push_back(coarse.cell * rotate(Eigen::Vector2d::UnitX(), main_direction + quarter * M_PI / 2));
+  }
+  const std::size_t nudge_step = std::max<std::size_t>(1, wall.size() / 10000);
+  std::vector<Eigen::Vector2d> nudge_wall, nudge_observers;
+  for (std::size_t i = 0; i < wall.size(); i += nudge_step) {
+    nudge_wall.push_back(wall[i]);
+    nudge_observers.push_back(observers[i]);
+  }
   for (std::size_t i = 0; i < starts.size(); ++i) {
     progress.checkpoint(0.7 + 0.3 * double(i) / starts.size(), "refinement");
-    const Similarity2 t = refine_icp(wall, plan, starts[i].transform, 3.0 * coarse.cell, options);
-    RegistrationCandidate c = score_placement(wall, observers, frames, plan, grid, t, options);
+    Similarity2 from = starts[i].transform, t;
+    RegistrationCandidate c;
+    bool refined_with_all = false;
+    if (nudges.size() > 1) {
+      double best = -1;
+      for (const Eigen::Vector2d& nudge : nudges) {
+        Similarity2 start = starts[i].transform;
+        start.translation += nudge;
+        const Similarity2 t_k = refine_icp(nudge_wall, plan, start, 3.0 * coarse.cell, options);
+        const RegistrationCandidate c_k = score_placement(
+            nudge_wall, nudge_observers, nudge_step == 1 ? frames : sampled_frames, plan, grid, t_k, options);
+        if (c_k.score <= best) continue;
+        best = c_k.score;
+        from = start;
+        t = t_k;
+        c = c_k;
+      }
+      refined_with_all = nudge_step == 1;  // the sample was all the points
+    }
+    if (!refined_with_all) {
+      t = refine_icp(wall, plan, from, 3.0 * coarse.cell, options);
+      c = score_placement(wall, observers, frames, plan, grid, t, options);
+    }
     Placement p;
     p.transform = t;
     p.score = c.score;

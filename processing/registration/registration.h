@@ -15,8 +15,9 @@
 //      minus the share of the path's frames off free space; the best peaks, suppressed to distinct
 //      placements.
 //   4. Refinement (icp.cpp) of the best few: robust point-to-segment ICP (Huber, then inliers only), the
-//      scale with a prior at 1; then the final score at the fine raster. Candidates that end on the same
-//      placement are merged.
+//      scale with a prior at 1, from the start and from the start moved one coarse cell either way along
+//      the plan's main directions (the best scoring kept); then the final score at the fine raster.
+//      Candidates that end on the same placement are merged.
 //
 // Score of a candidate: the mean over wall points of max(0, 1 - (d / inlier_tolerance_m)^2) (d: distance to
 // the nearest wall) less seen_through_weight times the share of wall points the placement says were seen
@@ -68,6 +69,9 @@ struct RegistrationOptions {
   double distinct_rotation_deg = 8.0;   // candidates closer than this in rotation ...
   double distinct_translation_m = 0.6;  // ... and this in position (of the points' centre) are one
   int icp_iterations = 30;
+  // Each start is also refined from one coarse cell either way along the plan's two main directions; the
+  // best scoring refinement is kept (a start a cell off along a corridor can settle a cell off).
+  bool nudged_starts = true;
   // ICP robust loss scale. On the two-room render (second piece): 0.03 m gives 0.125 deg of rotation error,
   // 0.015 m 0.081 deg.
   double huber_m = 0.015;

@@ -166,6 +166,49 @@ TEST(Registration, ASymmetricRoomGivesTwoNearEqualCandidatesAndOneAnchorPicks) {
   EXPECT_EQ(candidate_for_anchors(piece.path, p, anchors), matched_turned);
 }
 
+// A walk down a long plain corridor: its two long walls hold the placement across it and say nothing along
+// it; only the door jambs do (a few points each, 2 cm of noise): in one of these six placements the points
+// themselves score best 6 cm along the corridor from the truth, and the refinement from the truth goes
+// there too. Wherever the coarse search's cells fall, the placement must not settle further off, nor
+// let the scale take up a shift (registration_povray_test.cpp has the walk that did).
+TEST(Registration, ACorridorWalkLandsWhereItBelongsAlongTheCorridor) {
+  FloorPlan plan;
+  plan.layers = {{"WALLS", 7, true, true, 0}};
+  // Corridor y in [0, 2.2], x in [0, 32]; 0.9 m doorways every 6 m, alternating sides.
+  std::vector<double> south = {0.0}, north = {0.0};
+  for (double x = 4.0; x < 30; x += 6.0) {
+    std::vector<double>& side = (static_cast<int>(x) / 6) % 2 ? north : south;
+    side.push_back(x);
+    side.push_back(x + 0.9);
+  }
+  south.push_back(32.0);
+  north.push_back(32.0);
+  for (std::size_t k = 0; k + 1 < south.size(); k += 2) wall(&plan, {south[k], 0.0}, {south[k + 1], 0.0});
+  for (std::size_t k = 0; k + 1 < north.size(); k += 2) wall(&plan, {north[k], 2.2}, {north[k + 1], 2.2});
+  wall(&plan, {0, 0}, {0, 2.2});
+  wall(&plan, {32, 0}, {32, 2.2});
+  std::vector<Eigen::Vector2d> walk;
+  for (double x = 6.0; x < 26.0; x += 0.15) walk.push_back({x, 1.1 + 0.05 * std::sin(0.7 * x)});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 6; ++trial) {
+    Similarity2 truth;
+    truth.rotation = (360 * unit(rng) - 180) * kDeg;
+    truth.scale = 0.995 + 0.01 * unit(rng);
+    truth.translation = {20 * unit(rng) - 10, 20 * unit(rng) - 10};
+    const SyntheticPiece piece = synthesise(plan, walk, truth, 40 + static_cast<std::uint32_t>(trial));
+    const RegistrationResult r = register_on_plan(piece.path, piece.points, plan);
+    ASSERT_EQ(r.pieces.size(), 1u);
+    const PieceRegistration& p = r.pieces[0];
+    ASSERT_TRUE(p.ok) << trial << ": " << p.message;
+    const RegistrationCandidate& best = p.candidates[0];
+    std::printf("trial %d: %s; %.3f m off\n", trial, describe(p).c_str(),
+                position_error(best.transform, truth, piece.path));
+    EXPECT_LT(position_error(best.transform, truth, piece.path), 0.08) << trial;
+    EXPECT_NEAR(best.transform.scale, truth.scale, 0.002) << trial;
+  }
+}
+
 // Two rooms side by side under a corridor: A (6 m deep, a door to the corridor) and B (4 m, none), sharing
 // the wall x = 6. The walk stays in A near that wall. Points on walls alone prefer a wrong placement: moved
 // 4 m into B, the shared wall lands on B's far wall, a shelf front 2 m from A's far wall on the shared wall,
