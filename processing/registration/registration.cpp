@@ -98,6 +98,12 @@ void RegistrationOptions::check() const {
                  distinct_rotation_deg);
   require_option(distinct_translation_m >= 0, s + "distinct_translation_m", "must be >= 0",
                  distinct_translation_m);
+  require_option(local_search_deg >= 0 && local_search_deg <= 45, s + "local_search_deg",
+                 "must be in [0, 45]", local_search_deg);
+  require_option(local_search_step_deg > 0, s + "local_search_step_deg", "must be > 0",
+                 local_search_step_deg);
+  require_option(local_search_m >= 0 && local_search_m <= 5, s + "local_search_m", "must be in [0, 5]",
+                 local_search_m);
   require_option(icp_iterations >= 0, s + "icp_iterations", "must be >= 0", icp_iterations);
   require_option(huber_m > 0, s + "huber_m", "must be > 0", huber_m);
   require_option(seen_through_weight >= 0, s + "seen_through_weight", "must be >= 0", seen_through_weight);
@@ -223,15 +229,20 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
     nudge_wall.push_back(wall[i]);
     nudge_observers.push_back(observers[i]);
   }
+  const cv::Mat soft = soft_wall_raster(plan, options.inlier_tolerance_m);
+  std::vector<Eigen::Vector2d> local_wall;
+  for (std::size_t i = 0; i < wall.size(); i += std::max<std::size_t>(1, wall.size() / 2000))
+    local_wall.push_back(wall[i]);
   for (std::size_t i = 0; i < starts.size(); ++i) {
     progress.checkpoint(0.7 + 0.3 * double(i) / starts.size(), "refinement");
-    Similarity2 from = starts[i].transform, t;
+    const Similarity2 local = local_search(local_wall, soft, plan, starts[i].transform, options);
+    Similarity2 from = local, t;
     RegistrationCandidate c;
     bool refined_with_all = false;
     if (nudges.size() > 1) {
       double best = -1;
       for (const Eigen::Vector2d& nudge : nudges) {
-        Similarity2 start = starts[i].transform;
+        Similarity2 start = local;
         start.translation += nudge;
         const Similarity2 t_k = refine_icp(nudge_wall, plan, start, 3.0 * coarse.cell, options);
         const RegistrationCandidate c_k = score_placement(

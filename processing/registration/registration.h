@@ -14,6 +14,8 @@
 //      for each, the translation by FFT cross-correlation of the point raster with a wall-proximity raster,
 //      minus the share of the path's frames off free space; the best peaks, suppressed to distinct
 //      placements.
+//   3b. Local search (local_search.cpp) around each of the best few: every rotation within +-4 deg at 0.5
+//      deg and shift within +-0.3 m at the fine cell, by the chamfer score of 2 000 of the points.
 //   4. Refinement (icp.cpp) of the best few: robust point-to-segment ICP (Huber, then inliers only), the
 //      scale with a prior at 1, from the start and from the start moved one coarse cell either way along
 //      the plan's main directions (the best scoring kept); then the final score at the fine raster.
@@ -68,6 +70,12 @@ struct RegistrationOptions {
   int max_candidates = 5;               // reported per piece
   double distinct_rotation_deg = 8.0;   // candidates closer than this in rotation ...
   double distinct_translation_m = 0.6;  // ... and this in position (of the points' centre) are one
+  // Each start of the coarse search is first moved to the best chamfer score of an even sample of 2 000
+  // wall points within +-local_search_deg (at local_search_step_deg) and +-local_search_m (at cell_m): the
+  // coarse cells and rotation steps can leave a start both turned and shifted beyond ICP's reach. 0 = off.
+  double local_search_deg = 4.0;
+  double local_search_step_deg = 0.5;
+  double local_search_m = 0.3;
   int icp_iterations = 30;
   // Each start is also refined from one coarse cell either way along the plan's two main directions; the
   // best scoring refinement is kept (a start a cell off along a corridor can settle a cell off).

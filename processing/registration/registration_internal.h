@@ -74,6 +74,14 @@ std::vector<Placement> global_search(const std::vector<Eigen::Vector2d>& wall_po
                                      const std::vector<double>& plan_dirs, const RegistrationOptions& options,
                                      Progress& progress);
 
+// Local search (local_search.cpp): max(0, 1 - (d / tolerance_m)^2) of each fine cell's wall distance d; and
+// the rotation (within +-options.local_search_deg at local_search_step_deg, about where the points' mean
+// lands) and shift (within +-local_search_m at the fine cell) of `start` whose points sum most of it.
+cv::Mat soft_wall_raster(const PlanRaster& plan, double tolerance_m);
+Similarity2 local_search(const std::vector<Eigen::Vector2d>& points, const cv::Mat& soft,
+                         const PlanRaster& plan, const Similarity2& start,
+                         const RegistrationOptions& options);
+
 // Robust point-to-segment ICP from `start`.
 Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& wall_points, const PlanRaster& plan,
                        const Similarity2& start, double start_truncation_m,

@@ -429,6 +429,20 @@ TEST(Registration, OptionsAreChecked) {
   o = {};
   o.seen_through_depth_margin = 1;
   EXPECT_THROW(o.check(), Error);
+  for (double bad : {-1.0, 50.0}) {
+    o = {};
+    o.local_search_deg = bad;
+    EXPECT_THROW(o.check(), Error) << bad;
+  }
+  o = {};
+  o.local_search_step_deg = 0;
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.local_search_m = -0.1;
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.local_search_deg = 0;  // off
+  EXPECT_NO_THROW(o.check());
 }
 
 TEST(Registration, ACancelEndsWithCancelled) {
