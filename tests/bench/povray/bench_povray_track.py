@@ -45,9 +45,24 @@ def number_as_truth(estimate, truth):
     renumbered here by file name to the truth's indices, so that every figure below matches them."""
     by_file = {os.path.basename(f["file"]): f["index"] for f in truth["frames"]}
     est = json.load(open(estimate))
+    renumbered = {}
     for f in est["frames"]:
-        f["index"] = by_file[os.path.basename(f["file"])]
+        renumbered[f["index"]] = by_file[os.path.basename(f["file"])]
+        f["index"] = renumbered[f["index"]]
+    for piece in est.get("pieces", []):
+        for key in ("first_index", "last_index"):
+            if key in piece:
+                piece[key] = renumbered.get(piece[key], piece[key])
     write_json(estimate, est)
+    # The points name the frame that measured each (the sight lines registration checks): renumbered alike,
+    # so that the two files stay one tracked path.
+    points_file = os.path.splitext(estimate)[0] + ".points.json"
+    if os.path.exists(points_file):
+        points = json.load(open(points_file))
+        for p in points["points"]:
+            if len(p) == 6 and p[5] >= 0:
+                p[5] = renumbered.get(p[5], -1)
+        write_json(points_file, points)
 
 
 def track_args(args):
