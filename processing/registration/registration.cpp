@@ -129,6 +129,14 @@ namespace {
 
 int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
 
+// Every k-th element, k = max(1, size / count): an even sample of about `count` (all when fewer).
+std::vector<Eigen::Vector2d> even_sample(const std::vector<Eigen::Vector2d>& all, std::size_t count) {
+  std::vector<Eigen::Vector2d> out;
+  const std::size_t step = std::max<std::size_t>(1, all.size() / count);
+  for (std::size_t i = 0; i < all.size(); i += step) out.push_back(all[i]);
+  return out;
+}
+
 // `frames`: the piece's frames whose pose the images gave; `frame_position`: every frame of the path by its
 // index (where a point was measured from).
 PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& frames,
@@ -195,12 +203,8 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
     return out;
   }
   // The global search needs no more than ~20 000 points; the refinement and the score see them all.
-  std::vector<Eigen::Vector2d> sampled;
-  const std::size_t step = std::max<std::size_t>(1, wall.size() / 20000);
-  for (std::size_t i = 0; i < wall.size(); i += step) sampled.push_back(wall[i]);
-  std::vector<Eigen::Vector2d> sampled_frames;
-  const std::size_t frame_step = std::max<std::size_t>(1, frames.size() / 500);
-  for (std::size_t i = 0; i < frames.size(); i += frame_step) sampled_frames.push_back(frames[i]);
+  const std::vector<Eigen::Vector2d> sampled = even_sample(wall, 20000);
+  const std::vector<Eigen::Vector2d> sampled_frames = even_sample(frames, 500);
 
   SubProgress search_progress(progress, 0.0, 0.7, "search");
   const std::vector<Placement> starts =
@@ -223,16 +227,11 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
     for (int quarter = 0; quarter < 4; ++quarter)
       nudges.push_back(coarse.cell * rotate(Eigen::Vector2d::UnitX(), main_direction + quarter * M_PI / 2));
   }
-  const std::size_t nudge_step = std::max<std::size_t>(1, wall.size() / 10000);
-  std::vector<Eigen::Vector2d> nudge_wall, nudge_observers;
-  for (std::size_t i = 0; i < wall.size(); i += nudge_step) {
-    nudge_wall.push_back(wall[i]);
-    nudge_observers.push_back(observers[i]);
-  }
+  const std::vector<Eigen::Vector2d> nudge_wall = even_sample(wall, 10000),
+                                     nudge_observers = even_sample(observers, 10000);
+  const bool nudge_sample_is_all = nudge_wall.size() == wall.size();
   const cv::Mat soft = soft_wall_raster(plan, options.inlier_tolerance_m);
-  std::vector<Eigen::Vector2d> local_wall;
-  for (std::size_t i = 0; i < wall.size(); i += std::max<std::size_t>(1, wall.size() / 2000))
-    local_wall.push_back(wall[i]);
+  const std::vector<Eigen::Vector2d> local_wall = even_sample(wall, 2000);
   for (std::size_t i = 0; i < starts.size(); ++i) {
     progress.checkpoint(0.7 + 0.3 * double(i) / starts.size(), "refinement");
     const Similarity2 local = local_search(local_wall, soft, plan, starts[i].transform, options);
@@ -245,15 +244,16 @@ PieceRegistration register_piece(int piece, const std::vector<Eigen::Vector2d>& 
         Similarity2 start = local;
         start.translation += nudge;
         const Similarity2 t_k = refine_icp(nudge_wall, plan, start, 3.0 * coarse.cell, options);
-        const RegistrationCandidate c_k = score_placement(
-            nudge_wall, nudge_observers, nudge_step == 1 ? frames : sampled_frames, plan, grid, t_k, options);
+        const RegistrationCandidate c_k =
+            score_placement(nudge_wall, nudge_observers, nudge_sample_is_all ? frames : sampled_frames, plan,
+                            grid, t_k, options);
         if (c_k.score <= best) continue;
         best = c_k.score;
         from = start;
         t = t_k;
         c = c_k;
       }
-      refined_with_all = nudge_step == 1;  // the sample was all the points
+      refined_with_all = nudge_sample_is_all;
     }
     if (!refined_with_all) {
       t = refine_icp(wall, plan, from, 3.0 * coarse.cell, options);
