@@ -201,7 +201,8 @@ PhotoMetadata read_photo_metadata(const std::string& path) {
   PhotoMetadata m;
   const std::unique_lock<std::mutex> lock = lock_exiv2();
   try {
-    Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path);
+    // auto: exiv2 0.27 names the type std::auto_ptr, which clang flags as deprecated in C++17.
+    auto image = Exiv2::ImageFactory::open(path);
     if (!image.get()) {
       m.notes.push_back("no metadata reader for this file");
       return m;
