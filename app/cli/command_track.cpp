@@ -38,6 +38,7 @@
 #include "processing/capture/frame_source.h"
 #include "processing/capture/stills_folder.h"
 #include "processing/egomotion/egomotion.h"
+#include "processing/egomotion/tracking_health.h"
 #include "processing/pipeline/track_step.h"
 #include "processing/plan/dxf_import.h"
 #include "processing/registration/registration.h"
@@ -526,6 +527,13 @@ Command add_track_command(CLI::App& parent) {
                                   {"anchors", anchors.size()},
                                   {"anchor_residuals", residuals},
                                   {"out", options->out}};
+        const TrackingHealth health = as_stills ? TrackingHealth{} : assess_tracking(r.path);
+        summary["flag_counts"] = {
+            {"bridged", health.bridged},       {"moving_objects", health.moving_objects},
+            {"jumps", health.jumps},           {"textureless", health.textureless},
+            {"duplicates", health.duplicates}, {"corrupt", health.corrupt}};
+        summary["reliable"] = health.reliable;
+        if (!health.reliable) summary["warning"] = health.warning;
         if (!registration.is_null()) summary["registration"] = registration;
         summary["mode"] = as_stills ? "stills" : "video";
         if (!stills_summary.is_null()) summary["stills"] = stills_summary;
@@ -541,6 +549,7 @@ Command add_track_command(CLI::App& parent) {
                     << r.path.length() << (r.scale_source == "relative" ? " (relative units)" : " m")
                     << ", scale from " << r.scale_source << ", " << r.flagged_frames << " frames flagged, "
                     << r.loop_closures << " loop closures\n";
+          if (!health.reliable) std::cout << "Warning: " << health.warning << "\n";
           if (r.path.piece_count() > 1) {
             std::cout << "The images do not connect everywhere: the path is in " << r.path.piece_count()
                       << " pieces, each with its own scale"

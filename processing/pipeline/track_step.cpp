@@ -5,6 +5,7 @@
 #include "model/error.h"
 #include "processing/capture/frame_source.h"
 #include "processing/capture/stills_folder.h"
+#include "processing/egomotion/tracking_health.h"
 #include "processing/sampling/keyframe_sampler.h"
 
 namespace plenopath::pipeline {
@@ -89,6 +90,11 @@ TrackStepResult run_track(Project project, const TrackStepOptions& options, Prog
   if (out.choice.stills) {  // every still is a keyframe
     project.keyframes = every_frame_a_keyframe(project.path);
     out.changed |= kKeyframesChanged;
+  }
+  if (!out.choice.stills) {
+    // A path mostly bridged is still the author's to anchor, but it must be said to be a guess.
+    const TrackingHealth health = assess_tracking(project.path);
+    if (!health.reliable) mode = (mode.empty() ? "" : mode + "; ") + "warning: " + health.warning;
   }
   std::string summary = mode;
   if (place) {

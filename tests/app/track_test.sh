@@ -116,6 +116,10 @@ assert s["loop_closures"] == 0 and s["loop_frames"] == [], s  # three frames: no
 assert 0 <= s["tilt_prior_deg"] <= 2.0, s  # the tilt prior the last global pass used, within its bounds
 assert 0 <= s["floor_prior_pct"] <= 1.0, s  # the floor prior's spread the last pass used (0: no floor points)
 assert 0 <= s["steps_on_floor"] < s["keyframes"] and 0 <= s["steps_from_points"] < s["keyframes"], s
+# Flag counts as the path file's flags say (16 = bridged, 8 = moving objects); a warning past 20 % bridged.
+assert s["flag_counts"]["bridged"] == sum(1 for f in p["frames"] if f.get("flags", 0) & 16), (s, p)
+assert s["flag_counts"]["moving_objects"] == sum(1 for f in p["frames"] if f.get("flags", 0) & 8), (s, p)
+assert s["reliable"] == (s["flag_counts"]["bridged"] <= 0.2 * s["frames"]) and ("warning" in s) != s["reliable"], s
 assert [f["file"] for f in p["frames"]] == ["f9.png", "f10.png", "f11.png"], p
 assert p["frames"][0]["x"] == 0 and p["frames"][0]["y"] == 0, p
 assert len(s["pieces"]) == 1 and s["pieces"][0]["placed"] and s["pieces"][0]["frames"] == 3, s
