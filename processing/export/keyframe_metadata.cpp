@@ -22,7 +22,7 @@ std::string dms_rationals(double degrees_abs) {
 }
 
 void set_value(Exiv2::ExifData& exif, const char* key, Exiv2::TypeId type, const std::string& text) {
-  Exiv2::Value::AutoPtr value = Exiv2::Value::create(type);
+  auto value = Exiv2::Value::create(type);  // auto: exiv2 0.27 names std::auto_ptr (deprecated)
   value->read(text);
   exif[key].setValue(value.get());
 }
@@ -64,7 +64,7 @@ std::vector<unsigned char> with_photo_tags(const std::vector<unsigned char>& jpe
                                            const KeyframePhotoTags& tags, const std::string& name) {
   const std::unique_lock<std::mutex> lock = lock_exiv2();
   try {
-    Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(jpeg.data(), static_cast<long>(jpeg.size()));
+    auto image = Exiv2::ImageFactory::open(jpeg.data(), static_cast<long>(jpeg.size()));
     if (!image.get()) throw Error(name + ": exiv2 does not know this image format");
     image->readMetadata();
     const int width = image->pixelWidth(), height = image->pixelHeight();
