@@ -93,8 +93,9 @@ widgets::TaskFunction track_path_task(std::shared_ptr<PlacementOutcome> placemen
   return [placement](Project project, Progress& progress) {
     const bool has_plan = !project.plan.empty();
     pipeline::TrackStepResult result = pipeline::run_track(std::move(project), {}, progress);
-    if (placement && has_plan)
-      *placement = {result.placement ? std::move(result.placement->choices) : PlacementChoices{},
+    // The summary reaches the status bar with or without a plan: it says when the path is mostly a guess.
+    if (placement)
+      *placement = {has_plan && result.placement ? std::move(result.placement->choices) : PlacementChoices{},
                     result.summary};
     return TaskResult{std::move(result.project), result.changed};
   };

@@ -217,6 +217,10 @@ def bench_scene(scene, args):
             out["track_summary"] = {k: v for k, v in summary.items() if not isinstance(v, (list, dict))}
             if isinstance(summary.get("pieces"), list):
                 out["track_pieces"] = summary["pieces"]
+            # What the frames' flags say (issue 18: be honest where the images do not connect); "reliable" and
+            # any "warning" are among the scalars above.
+            if isinstance(summary.get("flag_counts"), dict):
+                out["track_flag_counts"] = summary["flag_counts"]
     except ValueError:
         pass
     number_as_truth(estimate, truth)
