@@ -111,7 +111,8 @@ Command add_track_command(CLI::App& parent) {
     std::vector<double> known_distance;  // frame a, frame b, metres
     std::string anchors;                 // anchors file: the path is refined onto them after tracking
     std::string mask;                    // image of the pixels not to use (black), e.g. the trolley
-    bool level = false;                  // per-frame pitch/roll from vertical edges
+    bool level = false;                  // per-frame pitch/roll from vertical edges, always
+    bool no_auto_level = false;          // ... never (default: when the first frames show the camera rocking)
     double tilt_prior = RefinementOptions{}.tilt_prior_deg;
     double step_check = EgomotionOptions{}.step_map_check_factor;
     int floor_steps = EgomotionOptions{}.floor_step_min_points;
@@ -184,7 +185,10 @@ Command add_track_command(CLI::App& parent) {
                 "Do not mask image regions that stay put while the camera moves (trolley, operator)");
   sub->add_flag(
       "--level", options->level,
-      "Estimate pitch and roll per frame from vertical edges (a camera rocking on an uneven floor)");
+      "Level every frame by its pitch and roll, estimated from vertical edges (by default this is "
+      "decided from the first 40 frames: on when the camera rocks, as a trolley on an uneven floor)");
+  sub->add_flag("--no-auto-level", options->no_auto_level,
+                "Never level the frames unless --level (the first frames' tilt is not judged)");
   sub->add_option("--tilt-prior", options->tilt_prior,
                   "Pitch and roll per frame are estimated in the refinement, held near level with this "
                   "spread in degrees (0: a perfectly level camera)")
@@ -291,6 +295,7 @@ Command add_track_command(CLI::App& parent) {
         eo.klt.work_width = options->work_width;
         eo.loop.enabled = !options->no_loop_closure;
         eo.klt.level_bearings = options->level;
+        eo.klt.auto_level = !options->no_auto_level;
         eo.refinement.tilt_prior_deg = options->tilt_prior;
         eo.step_map_check_factor = options->step_check;
         eo.floor_step_min_points = options->floor_steps;
@@ -518,6 +523,8 @@ Command add_track_command(CLI::App& parent) {
                                   {"scale_source", r.scale_source},
                                   {"flagged_frames", r.flagged_frames},
                                   {"masked_pct", 100.0 * r.static_mask_fraction},
+                                  {"levelled", r.levelled},
+                                  {"tilt_spread_deg", r.tilt_spread_deg},
                                   {"loop_closures", r.loop_closures},
                                   {"loop_frames", r.loop_frames},
                                   {"refinement_rms_deg", r.refinement.final_rms * 180.0 / M_PI},

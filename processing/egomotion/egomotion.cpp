@@ -191,6 +191,8 @@ EgomotionResult EgomotionTracker::finish(Progress& progress) {
   result.mask = s.mask;
   result.static_mask_fraction =
       s.mask.empty() ? 0.0 : 1.0 - cv::countNonZero(s.mask) / double(s.mask.total());
+  result.levelled = s.klt.levelling();
+  result.tilt_spread_deg = s.klt.tilt_spread_deg();
   result.seconds_per_frame_stage = s.seconds_frames;
   result.track_memory_mb = s.klt.memory().bytes / 1048576.0;
   const int n = s.processed;

@@ -137,6 +137,8 @@ struct EgomotionResult {
   int flagged_frames = 0;
   cv::Mat mask;  // the pixels used (255) and masked (0) at the working size; empty = all used
   double static_mask_fraction = 0.0;   // share of the image masked (author's and automatic)
+  bool levelled = false;               // bearings levelled by per-frame tilt (KltOptions::auto_level)
+  double tilt_spread_deg = 0.0;        // the first frames' tilt spread auto_level judged (0: not judged)
   double track_memory_mb = 0;          // the KLT track history kept for the geometry (MiB)
   double seconds_per_frame_stage = 0;  // ring + KLT (excluding decoding)
   double seconds_geometry = 0;         // everything in finish()

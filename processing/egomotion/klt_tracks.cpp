@@ -47,10 +47,39 @@ void KltOptions::check() const {
                  affine_refresh_deformation);
   require_option(max_abs_elevation_deg > 10 && max_abs_elevation_deg <= 90, s + "max_abs_elevation_deg",
                  "must be in (10, 90]", max_abs_elevation_deg);
-  if (level_bearings) tilt.check();
+  require_option(auto_level_frames >= 2, s + "auto_level_frames", "must be >= 2", auto_level_frames);
+  require_option(auto_level_spread_deg > 0, s + "auto_level_spread_deg", "must be > 0",
+                 auto_level_spread_deg);
+  if (level_bearings || auto_level) tilt.check();
 }
 
-KltTracker::KltTracker(const KltOptions& options) : options_(options) { options.check(); }
+KltTracker::KltTracker(const KltOptions& options) : options_(options) {
+  options.check();
+  levelling_ = options_.level_bearings ? Levelling::kOn
+               : options_.auto_level   ? Levelling::kDeciding
+                                       : Levelling::kOff;
+}
+
+void KltTracker::decide_levelling() {
+  std::vector<double> pitch, roll;
+  for (const TiltEstimate& t : tilts_)
+    if (t.valid) {
+      pitch.push_back(t.pitch);
+      roll.push_back(t.roll);
+    }
+  // Too few frames with vertical edges to judge: not levelled (nor could most frames be).
+  if (pitch.size() * 2 < tilts_.size()) {
+    levelling_ = Levelling::kOff;
+    return;
+  }
+  const double pitch_median = median(pitch), roll_median = median(roll);
+  double sum2 = 0;
+  for (std::size_t i = 0; i < pitch.size(); ++i)
+    sum2 += std::pow(pitch[i] - pitch_median, 2) + std::pow(roll[i] - roll_median, 2);
+  tilt_spread_deg_ = std::sqrt(sum2 / pitch.size()) * 180.0 / M_PI;
+  const double threshold = options_.auto_level_spread_deg * 1024.0 / std::max(1, width_);
+  levelling_ = tilt_spread_deg_ > threshold ? Levelling::kOn : Levelling::kOff;
+}
 
 KltTracker::Packed KltTracker::pack(float x, float y) const {
   auto unit = [&](float v) {
@@ -129,7 +158,7 @@ TrackMemory KltTracker::memory() const {
 Eigen::Vector3d KltTracker::bearing(const TrackObservation& o) const {
   // OpenCV puts pixel centres on integers; rig/spherical.h puts them at u + 0.5.
   const Eigen::Vector3d b = equirect_to_bearing({o.x + 0.5, o.y + 0.5}, width_, height_);
-  if (!options_.level_bearings || o.frame < 0 || o.frame >= static_cast<int>(level_from_camera_.size()))
+  if (levelling_ != Levelling::kOn || o.frame < 0 || o.frame >= static_cast<int>(level_from_camera_.size()))
     return b;
   return level_from_camera_[static_cast<std::size_t>(o.frame)] * b;
 }
@@ -410,7 +439,8 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
   const int frame_index = frame_count_++;
   if (!mask_.empty() && mask_.size() != gray.size())
     cv::resize(mask_, mask_, gray.size(), 0, 0, cv::INTER_NEAREST);
-  if (options_.level_bearings) measure_tilt(gray);
+  if (levelling_ != Levelling::kOff) measure_tilt(gray);
+  if (levelling_ == Levelling::kDeciding && frame_count_ >= options_.auto_level_frames) decide_levelling();
   // Wrap horizontally (the seam), replicate vertically (the poles are not tracked anyway).
   cv::Mat padded;
   cv::copyMakeBorder(gray, padded, 0, 0, pad_, pad_, cv::BORDER_WRAP);

@@ -57,6 +57,15 @@ struct KltOptions {
   // camera that rocks on an uneven floor. Off by default: on a level camera the estimate's own noise
   // (0.08 deg RMS at 1024 wide, 0.2 deg at 512 on the office renders) costs more than it gains.
   bool level_bearings = false;
+  // Unless level_bearings forces it: the tilt of the first auto_level_frames frames is estimated, and when
+  // it varies by more than auto_level_spread_deg (RMS about its median, pitch and roll together; at 1024
+  // wide, scaled with the working width like the estimate's noise) the camera rocks: every frame's
+  // bearings are levelled. Otherwise no more tilt is estimated. A trolley whose tilt changes within a few
+  // frames otherwise scatters the chained step directions (bench_nuisances steps_26cm_fast_tilt: heading
+  // 0.336 deg unlevelled, 0.016 levelled). Captures shorter than auto_level_frames stay unlevelled.
+  bool auto_level = true;
+  int auto_level_frames = 40;
+  double auto_level_spread_deg = 0.3;
   TiltOptions tilt;
   void check() const;  // throws Error naming the bad field
 };
@@ -108,13 +117,17 @@ class KltTracker {
   int frame_count() const { return frame_count_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  // Unit bearing in the camera frame, levelled by the frame's estimated tilt when level_bearings is on.
+  // Unit bearing in the camera frame, levelled by the frame's estimated tilt when levelling() is on.
   Eigen::Vector3d bearing(const TrackObservation& o) const;
+  // Whether bearings are levelled (level_bearings, or auto_level found the camera rocking), and the spread
+  // of the first frames' tilt estimates that auto_level judged (degrees; 0 before it judged).
+  bool levelling() const { return levelling_ == Levelling::kOn; }
+  double tilt_spread_deg() const { return tilt_spread_deg_; }
   // Pixels not to use (CV_8U, any size, 255 = usable, 0 = masked: the trolley, the operator): no corners are
   // detected there and a track entering it ends. Empty = use everything. Applies from the next frame.
   void set_mask(const cv::Mat& mask);
   const cv::Mat& mask() const { return mask_; }  // at the working size once a frame was added
-  const std::vector<TiltEstimate>& tilts() const { return tilts_; }  // per frame (level_bearings)
+  const std::vector<TiltEstimate>& tilts() const { return tilts_; }  // per frame estimated
   const std::vector<int>& live_tracks() const { return live_; }      // tracks observed in the last frame
   const std::vector<cv::Point2f>& live_positions() const { return live_positions_; }  // ... and where
   int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
@@ -166,6 +179,9 @@ class KltTracker {
   cv::Mat mask_;                                    // 255 = usable, working size (or as given until then)
   std::vector<TiltEstimate> tilts_;                 // per frame
   std::vector<Eigen::Matrix3d> level_from_camera_;  // per frame (level_bearings)
+  enum class Levelling { kOff, kDeciding, kOn } levelling_ = Levelling::kOff;
+  double tilt_spread_deg_ = 0.0;
+  void decide_levelling();  // auto_level, after its first frames
 };
 
 }  // namespace plenopath

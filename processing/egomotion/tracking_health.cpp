@@ -21,8 +21,8 @@ TrackingHealth assess_tracking(const CameraPath& path, double max_bridged_share)
   std::string why;
   if (h.moving_objects > max_bridged_share * h.frames)
     why += " Many frames also disagree with the static scene (" + std::to_string(h.moving_objects) +
-           "): a camera that rocks on an uneven floor looks like that; try tracking with --level (pitch and "
-           "roll per frame).";
+           "): a camera that rocks on an uneven floor looks like that; the frames are levelled by themselves "
+           "only when the first 40 show it, --level levels them all.";
   h.warning =
       "the path is not reliable: " + std::to_string(h.bridged) + " of " + std::to_string(h.frames) +
       " frames (" + std::to_string(percent) +

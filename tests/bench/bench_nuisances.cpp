@@ -6,9 +6,11 @@
 // JPEG in memory, tracks them with the camera-height scale and prints one JSON object with, per nuisance:
 // heading RMS (rings and refined), ATE (m and % of the path length), metric scale error and the flagged
 // frames. Usage: bench_nuisances [--frames N] [--width W] [--only NAME] [--mask-frames N] [--level]
+// [--per-frame]
 // [--tilt-prior DEG] [--floor-prior PCT] [--floor-from-data K]
 //   (--mask-frames: EgomotionOptions::static_mask.frames, 0 turns the automatic static mask off;
-//   --level: KltOptions::level_bearings, per-frame pitch/roll from vertical edges;
+//   --level: KltOptions::level_bearings, every frame levelled by its pitch/roll from vertical edges (else
+//   auto_level decides); --per-frame: each frame's truth and estimate on stderr;
 //   --tilt-prior: RefinementOptions::tilt_prior_deg, pitch/roll per frame estimated in the refinement;
 //   --floor-prior: RefinementOptions::floor_sigma in percent of the camera height, 0 = off;
 //   --floor-from-data: RefinementOptions::floor_sigma_from_data, 0 = the floor prior's spread as given)
@@ -142,6 +144,7 @@ double heading_rms_deg(const std::vector<double>& estimate, const CameraPath& tr
 struct BenchOptions {
   int frames = 300, width = 1024, mask_frames = -1;
   bool level = false;
+  bool per_frame = false;  // --per-frame: truth and estimate of every frame on stderr
   double tilt_prior = -1, floor_prior = -1, floor_from_data = -1;
 };
 
@@ -178,6 +181,12 @@ nlohmann::json run(const Nuisance& nuisance, const BenchOptions& bench) {
       options);
   const double track_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const PathErrors e = evaluate_path(r.path, truth);
+  if (bench.per_frame)  // index, truth x y heading, estimate x y heading, flags, reason
+    for (size_t i = 0; i < truth.size(); ++i)
+      std::fprintf(stderr, "frame %zu %.4f %.4f %.3f %.4f %.4f %.3f %u %s\n", i, truth.frames[i].x,
+                   truth.frames[i].y, degrees(truth.frames[i].heading), r.path.frames[i].x,
+                   r.path.frames[i].y, degrees(r.path.frames[i].heading), r.path.frames[i].flags,
+                   r.path.frames[i].reason.c_str());
   return {{"nuisance", nuisance.name},
           {"frames", truth.size()},
           {"size", {render.width, render.height}},
@@ -191,6 +200,8 @@ nlohmann::json run(const Nuisance& nuisance, const BenchOptions& bench) {
           {"flagged_frames", r.flagged_frames},
           {"static_mask_pixels_pct", r.static_mask_fraction * 100.0},
           {"level_bearings", bench.level},
+          {"levelled", r.levelled},
+          {"tilt_spread_deg", r.tilt_spread_deg},
           {"tilt_prior_deg", options.refinement.tilt_prior_deg},        // the option: the widest it may be
           {"floor_prior_pct", 100.0 * options.refinement.floor_sigma},  // the widest it may be
           {"floor_prior_used_pct", 100.0 * r.refinement.floor_sigma_used},
@@ -213,6 +224,8 @@ int main(int argc, char** argv) {
       only = argv[++i];
     else if (!std::strcmp(argv[i], "--mask-frames") && i + 1 < argc)
       bench.mask_frames = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--per-frame"))
+      bench.per_frame = true;
     else if (!std::strcmp(argv[i], "--level"))
       bench.level = true;
     else if (!std::strcmp(argv[i], "--tilt-prior") && i + 1 < argc)

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "model/error.h"
 #include "processing/egomotion/klt_tracks.h"
@@ -93,6 +96,64 @@ TEST(VerticalTilt, LevelledBearingsFollowTheTrueRotation) {
   EXPECT_LT(worst, 0.4);
 }
 
+// KltOptions::auto_level: the spread of the first frames' tilt estimates, against the spread of the tilt
+// the renderer applied (camera_tilt_at_frame), decides whether bearings are levelled.
+struct AutoLevelRun {
+  bool levelling = false;
+  double spread_deg = 0, true_spread_deg = 0;
+  std::size_t tilts = 0;
+};
+AutoLevelRun run_auto_level(double wobble_deg, int frames_added) {
+  const SyntheticScene scene = build_synthetic_scene(make_office_sample_plan());
+  RenderOptions render;
+  render.width = 1024;
+  render.height = 512;
+  render.depth = false;
+  render.tilt_wobble_deg = wobble_deg;
+  render.tilt_wobble_frames = 6;  // the tilt changes within a few frames (a rocking trolley, subsampled)
+  KltOptions options;
+  options.auto_level_frames = 12;
+  KltTracker klt(options);
+  std::vector<double> pitch, roll;
+  for (int i = 0; i < frames_added; ++i) {
+    const PathFrame pose{i, "", 3.0 + 0.1 * i, 6.0, 0.0, 1.0, kFrameOk, ""};
+    klt.add_frame(render_panorama(scene, pose, render).rgb);
+    const CameraTilt t = camera_tilt_at_frame(render, i);
+    pitch.push_back(t.pitch);
+    roll.push_back(t.roll);
+  }
+  // The true spread about the median, as auto_level measures its estimates' (12 frames judged).
+  auto median_of = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  };
+  pitch.resize(std::min<std::size_t>(pitch.size(), 12));
+  roll.resize(pitch.size());
+  const double mp = median_of(pitch), mr = median_of(roll);
+  double sum2 = 0;
+  for (std::size_t i = 0; i < pitch.size(); ++i)
+    sum2 += std::pow(pitch[i] - mp, 2) + std::pow(roll[i] - mr, 2);
+  return {klt.levelling(), klt.tilt_spread_deg(), std::sqrt(sum2 / pitch.size()) / kDeg, klt.tilts().size()};
+}
+
+TEST(VerticalTilt, TheTrackerLevelsARockingCameraByItself) {
+  const AutoLevelRun rocking = run_auto_level(1.0, 14);
+  std::printf("rocking: spread %.3f deg estimated, %.3f true\n", rocking.spread_deg, rocking.true_spread_deg);
+  EXPECT_GT(rocking.true_spread_deg, 0.5);
+  EXPECT_NEAR(rocking.spread_deg, rocking.true_spread_deg, 0.25);
+  EXPECT_TRUE(rocking.levelling);
+  EXPECT_EQ(rocking.tilts, 14u);  // levelling on: every frame's tilt is estimated
+  const AutoLevelRun level = run_auto_level(0.0, 14);
+  std::printf("level: spread %.3f deg estimated\n", level.spread_deg);
+  EXPECT_LT(level.spread_deg, 0.15);
+  EXPECT_FALSE(level.levelling);
+  EXPECT_EQ(level.tilts, 12u);  // judged on the first 12, then no more estimates
+  // Fewer frames than it judges on: not levelled, not judged.
+  const AutoLevelRun short_capture = run_auto_level(1.0, 5);
+  EXPECT_FALSE(short_capture.levelling);
+  EXPECT_EQ(short_capture.spread_deg, 0.0);
+}
+
 TEST(VerticalTilt, BadInputIsReported) {
   TiltOptions o;
   o.max_tilt_deg = 0;
@@ -101,6 +162,14 @@ TEST(VerticalTilt, BadInputIsReported) {
     ADD_FAILURE() << "no throw";
   } catch (const Error& error) {
     EXPECT_STREQ(error.what(), "TiltOptions.max_tilt_deg must be in (0, 45), got 0");
+  }
+  KltOptions klt;
+  klt.auto_level_frames = 1;
+  try {
+    klt.check();
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(), "KltOptions.auto_level_frames must be >= 2, got 1");
   }
   EXPECT_THROW(estimate_tilt(cv::Mat(4, 8, CV_32F), TiltOptions{}), Error);
   EXPECT_THROW(estimate_tilt(cv::Mat(4, 8, CV_8U, cv::Scalar(0)), TiltOptions{}, cv::Mat(2, 2, CV_8U)),
