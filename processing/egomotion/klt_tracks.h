@@ -58,11 +58,12 @@ struct KltOptions {
   // (0.08 deg RMS at 1024 wide, 0.2 deg at 512 on the office renders) costs more than it gains.
   bool level_bearings = false;
   // Unless level_bearings forces it: the tilt of the first auto_level_frames frames is estimated, and when
-  // it varies by more than auto_level_spread_deg (RMS about its median, pitch and roll together; at 1024
-  // wide, scaled with the working width like the estimate's noise) the camera rocks: every frame's
-  // bearings are levelled. Otherwise no more tilt is estimated. A trolley whose tilt changes within a few
-  // frames otherwise scatters the chained step directions (bench_nuisances steps_26cm_fast_tilt: heading
-  // 0.336 deg unlevelled, 0.016 levelled). Captures shorter than auto_level_frames stay unlevelled.
+  // it varies by more than auto_level_spread_deg (pitch and roll together, each as 1.4826 x its median
+  // absolute deviation; at 1024 wide, scaled with the working width like the estimate's noise) the camera
+  // rocks: every frame's bearings are levelled. Otherwise no more tilt is estimated. A trolley whose tilt
+  // changes within a few frames otherwise scatters the chained step directions (bench_nuisances
+  // steps_26cm_fast_tilt: heading 0.336 deg unlevelled, 0.016 levelled). Captures shorter than
+  // auto_level_frames stay unlevelled.
   bool auto_level = true;
   int auto_level_frames = 40;
   double auto_level_spread_deg = 0.3;

@@ -122,18 +122,20 @@ AutoLevelRun run_auto_level(double wobble_deg, int frames_added) {
     pitch.push_back(t.pitch);
     roll.push_back(t.roll);
   }
-  // The true spread about the median, as auto_level measures its estimates' (12 frames judged).
+  // The true spread as auto_level measures its estimates' (1.4826 x the median absolute deviation of pitch
+  // and of roll, together), over the 12 frames it judges.
   auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
   };
-  pitch.resize(std::min<std::size_t>(pitch.size(), 12));
-  roll.resize(pitch.size());
-  const double mp = median_of(pitch), mr = median_of(roll);
-  double sum2 = 0;
-  for (std::size_t i = 0; i < pitch.size(); ++i)
-    sum2 += std::pow(pitch[i] - mp, 2) + std::pow(roll[i] - mr, 2);
-  return {klt.levelling(), klt.tilt_spread_deg(), std::sqrt(sum2 / pitch.size()) / kDeg, klt.tilts().size()};
+  auto robust_sigma = [&](std::vector<double> v) {
+    v.resize(std::min<std::size_t>(v.size(), 12));
+    const double m = median_of(v);
+    for (double& x : v) x = std::abs(x - m);
+    return 1.4826 * median_of(v);
+  };
+  const double true_spread = std::hypot(robust_sigma(pitch), robust_sigma(roll)) / kDeg;
+  return {klt.levelling(), klt.tilt_spread_deg(), true_spread, klt.tilts().size()};
 }
 
 TEST(VerticalTilt, TheTrackerLevelsARockingCameraByItself) {
