@@ -139,9 +139,8 @@ FloorStep floor_step(const FloorStepInput& input, double min_depression, double 
   out.points = static_cast<int>(lengths.size());
   if (lengths.empty()) return out;
   out.length = median(lengths);
-  std::vector<double> deviation;
-  for (double l : lengths) deviation.push_back(std::abs(l - out.length));
-  out.spread = out.length > 0 ? median(deviation) / out.length : std::numeric_limits<double>::infinity();
+  out.spread = out.length > 0 ? median_absolute_deviation(lengths, out.length) / out.length
+                              : std::numeric_limits<double>::infinity();
   return out;
 }
 

@@ -76,10 +76,7 @@ void KltTracker::decide_levelling() {
   // scatter), so that a few frames whose estimate a passer-by or a fast turn threw off do not level a
   // level camera (the POV-Ray people walk every third frame: RMS 0.287 deg).
   auto robust_sigma = [](const std::vector<double>& v) {
-    const double m = median(v);
-    std::vector<double> deviation;
-    for (double x : v) deviation.push_back(std::abs(x - m));
-    return 1.4826 * median(deviation);
+    return 1.4826 * median_absolute_deviation(v, median(v));
   };
   tilt_spread_deg_ = std::hypot(robust_sigma(pitch), robust_sigma(roll)) * 180.0 / M_PI;
   const double threshold = options_.auto_level_spread_deg * 1024.0 / std::max(1, width_);

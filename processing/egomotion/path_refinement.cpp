@@ -571,8 +571,7 @@ double floor_level_spread(const BundleProblem& p) {
     if (p.points[static_cast<std::size_t>(q)].z() < 0) z.push_back(p.points[static_cast<std::size_t>(q)].z());
   if (z.size() < 10) return 0.0;
   const double level = median(z);
-  for (double& v : z) v = std::abs(v - level);
-  return 1.4826 * median(z) / -level;
+  return 1.4826 * median_absolute_deviation(z, level) / -level;
 }
 
 }  // namespace

@@ -220,9 +220,8 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
           // the points known so far are many and agree, they do, as before.
           double known_precision = std::numeric_limits<double>::infinity();
           if (lengths.size() >= 8 && length > 0) {
-            std::vector<double> deviation;
-            for (double l : lengths) deviation.push_back(std::abs(l - length));
-            known_precision = median(deviation) / length / std::sqrt(static_cast<double>(lengths.size()));
+            known_precision = median_absolute_deviation(lengths, length) / length /
+                              std::sqrt(static_cast<double>(lengths.size()));
           }
           const double floor_precision = on_floor.spread / std::sqrt(std::max(1, on_floor.points));
           if (on_floor.points >= opt.floor_step_min_points && on_floor.length > 0 &&
@@ -240,9 +239,7 @@ PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>&
         // steps many times the usual.
         double spread = 1.0;
         if (lengths.size() >= 20 && length > 0) {
-          std::vector<double> deviation;
-          for (double l : lengths) deviation.push_back(std::abs(l - length));
-          spread = median(deviation) / length;
+          spread = median_absolute_deviation(lengths, length) / length;
         }
         const bool agreed = spread < opt.max_step_spread || from_floor;
         if (recent_speeds.size() >= 3 && !agreed) {

@@ -72,9 +72,7 @@ EdgeLengths solve_edge_lengths(int still_count, const std::vector<EdgeDepths>& e
     for (const auto& [key, values] : logs) {
       if (static_cast<int>(values.size()) < min_shared) continue;
       const double mid = median(values);
-      std::vector<double> deviation;
-      for (double v : values) deviation.push_back(std::abs(v - mid));
-      if (median(deviation) > max_log_spread) continue;
+      if (median_absolute_deviation(values, mid) > max_log_spread) continue;
       ratios.push_back({key.first, key.second, mid, std::sqrt(static_cast<double>(values.size()))});
     }
   }

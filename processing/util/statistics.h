@@ -2,6 +2,7 @@
 // Order statistics of a set of values, by partial sort of a copy.
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace plenopath {
@@ -19,6 +20,14 @@ inline double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
   return v[v.size() / 2];
+}
+
+// The median of |v - centre| (0 for none); 1.4826 times it is the standard deviation of Gaussian scatter.
+inline double median_absolute_deviation(const std::vector<double>& v, double centre) {
+  std::vector<double> deviation;
+  deviation.reserve(v.size());
+  for (double x : v) deviation.push_back(x < centre ? centre - x : x - centre);
+  return median(std::move(deviation));
 }
 
 }  // namespace plenopath

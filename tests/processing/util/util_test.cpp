@@ -33,6 +33,14 @@ TEST(Statistics, MedianAndPercentileAgreeWithAFullSort) {
   EXPECT_EQ(median({4.0, 1.0}), 4.0);  // the upper of two
 }
 
+TEST(Statistics, MedianAbsoluteDeviationByHand) {
+  // |v - 3| = 2, 1, 0, 4, 7: sorted 0 1 2 4 7, median 2.
+  EXPECT_EQ(median_absolute_deviation({1.0, 2.0, 3.0, 7.0, 10.0}, 3.0), 2.0);
+  // About another centre: |v - 0| = 1 2 3 7 10, median 3.
+  EXPECT_EQ(median_absolute_deviation({1.0, 2.0, 3.0, 7.0, 10.0}, 0.0), 3.0);
+  EXPECT_EQ(median_absolute_deviation({}, 5.0), 0.0);
+}
+
 TEST(ParallelFor, RunsEveryIndexOnceOnAnyThreadCount) {
   for (int threads : {0, 1, 2, 7}) {
     std::vector<std::atomic<int>> hits(1000);
