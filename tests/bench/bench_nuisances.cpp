@@ -10,7 +10,7 @@
 // [--tilt-prior DEG] [--floor-prior PCT] [--floor-from-data K]
 //   (--mask-frames: EgomotionOptions::static_mask.frames, 0 turns the automatic static mask off;
 //   --level: KltOptions::level_bearings, every frame levelled by its pitch/roll from vertical edges (else
-//   auto_level decides); --per-frame: each frame's truth and estimate on stderr;
+//   auto_level decides); --per-frame: each frame's truth, estimate and ring heading on stderr;
 //   --tilt-prior: RefinementOptions::tilt_prior_deg, pitch/roll per frame estimated in the refinement;
 //   --floor-prior: RefinementOptions::floor_sigma in percent of the camera height, 0 = off;
 //   --floor-from-data: RefinementOptions::floor_sigma_from_data, 0 = the floor prior's spread as given)
@@ -108,6 +108,32 @@ const std::vector<Nuisance>& nuisances() {
          r.trolley = true;
          r.operator_person = true;
        }},
+      {"steps_26cm_plain_noise_rig",
+       [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
+         w.step = 0.26;
+         s.wall_finish = WallFinish::kPlainPaint;
+         s.posters = false;
+         r.noise_sigma = 3.0;
+         r.jpeg_quality = 82;
+         r.trolley = true;
+         r.operator_person = true;
+       }},
+      {"steps_26cm_plain_noise_tilt",
+       [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
+         w.step = 0.26;
+         r.tilt_wobble_deg = 0.7;
+         r.tilt_wobble_frames = 6;
+         s.wall_finish = WallFinish::kPlainPaint;
+         s.posters = false;
+         r.noise_sigma = 3.0;
+         r.jpeg_quality = 82;
+       }},
+      {"steps_26cm_rig",
+       [](SceneOptions&, RenderOptions& r, AutoWalkOptions& w) {
+         w.step = 0.26;
+         r.trolley = true;
+         r.operator_person = true;
+       }},
       {"steps_26cm", [](SceneOptions&, RenderOptions&, AutoWalkOptions& w) { w.step = 0.26; }},
       {"steps_26cm_fast_tilt",
        [](SceneOptions&, RenderOptions& r, AutoWalkOptions& w) {
@@ -181,12 +207,12 @@ nlohmann::json run(const Nuisance& nuisance, const BenchOptions& bench) {
       options);
   const double track_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const PathErrors e = evaluate_path(r.path, truth);
-  if (bench.per_frame)  // index, truth x y heading, estimate x y heading, flags, reason
+  if (bench.per_frame)  // index, truth x y heading, estimate x y heading, ring heading, flags, reason
     for (size_t i = 0; i < truth.size(); ++i)
-      std::fprintf(stderr, "frame %zu %.4f %.4f %.3f %.4f %.4f %.3f %u %s\n", i, truth.frames[i].x,
+      std::fprintf(stderr, "frame %zu %.4f %.4f %.3f %.4f %.4f %.3f %.3f %u %s\n", i, truth.frames[i].x,
                    truth.frames[i].y, degrees(truth.frames[i].heading), r.path.frames[i].x,
-                   r.path.frames[i].y, degrees(r.path.frames[i].heading), r.path.frames[i].flags,
-                   r.path.frames[i].reason.c_str());
+                   r.path.frames[i].y, degrees(r.path.frames[i].heading), degrees(r.ring_headings[i]),
+                   r.path.frames[i].flags, r.path.frames[i].reason.c_str());
   return {{"nuisance", nuisance.name},
           {"frames", truth.size()},
           {"size", {render.width, render.height}},
