@@ -157,9 +157,13 @@ void EgomotionTracker::State::decide_mask(cv::Size size) {
 
 void EgomotionTracker::State::process(const cv::Mat& gray) {
   State& s = *this;
-  // The turn since the previous frame, from the rings, starts the KLT search (fast turns).
-  const RingShift shift = s.rings->add(s.mask.empty() ? make_ring_image(gray, s.options.ring)
-                                                      : make_ring_image(gray, s.options.ring, s.mask));
+  // The turn since the previous frame, from the rings, starts the KLT search (fast turns). The rings search
+  // around the turn the tracks made into the frame before (a corner taken at 20-40 deg a frame).
+  const double expected_shift =
+      s.klt.width() > 0 ? s.klt.last_turn_px() * gray.cols / static_cast<double>(s.klt.width()) : 0.0;
+  const RingShift shift = s.rings->add(
+      s.mask.empty() ? make_ring_image(gray, s.options.ring) : make_ring_image(gray, s.options.ring, s.mask),
+      expected_shift);
   const double predicted_shift = shift.valid && shift.peak >= s.options.ring.min_peak ? shift.shift_px : 0.0;
   const FrameTrackStats st = s.klt.add_frame(gray, predicted_shift);
   s.stats.push_back(st);

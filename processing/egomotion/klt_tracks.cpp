@@ -35,6 +35,7 @@ void KltOptions::check() const {
   require_option(exposure_jump > 0, s + "exposure_jump", "must be > 0", exposure_jump);
   require_option(min_distance_px >= 1, s + "min_distance_px", "must be >= 1", min_distance_px);
   require_option(window_px >= 5 && window_px % 2 == 1, s + "window_px", "must be odd and >= 5", window_px);
+  require_option(retry_share >= 0 && retry_share <= 1, s + "retry_share", "must be in [0, 1]", retry_share);
   require_option(pyramid_levels >= 0 && pyramid_levels <= 6, s + "pyramid_levels", "must be in [0, 6]",
                  pyramid_levels);
   require_option(min_parallax_flow_px >= 0, s + "min_parallax_flow_px", "must be >= 0", min_parallax_flow_px);
@@ -213,6 +214,7 @@ struct KltTracker::LiveFlow {
   std::vector<cv::Point2f> from, to;
   std::vector<char> continued;    // per live track: found, checked back, inside the band and the mask
   std::vector<double> flow;       // flow lengths of the continued tracks
+  double turn_flow = 0.0;         // their median sideways flow (a turn), working pixels
   bool moved = false;             // the camera moved (parallax beyond a turn), so tracks age
   std::vector<AffineWarp> warps;  // per live track: its affine refinement (affine_refinement)
   std::vector<char> aligned;      // ... and whether it was accepted
@@ -276,6 +278,7 @@ KltTracker::LiveFlow KltTracker::follow_live_tracks(const std::vector<cv::Mat>& 
     sideways.push_back(f.to[k].x - f.from[k].x);
   }
   const double turn_flow = median(sideways);
+  f.turn_flow = turn_flow;
   std::vector<double> parallax;
   for (size_t k = 0; k < live_.size(); ++k)
     if (f.continued[k])
@@ -456,6 +459,17 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
   FrameTrackStats stats;
   if (!live_.empty() && !previous_pyramid_.empty()) {
     LiveFlow flow = follow_live_tracks(pyramid, predicted_shift_px, y_min, y_max);
+    // Guesses closer than this reach the same minimum: the pyramid's coarsest level covers the difference.
+    const double same_guess_px = 0.25 * options_.window_px;
+    if (options_.retry_share > 0 && flow.flow.size() < options_.retry_share * live_.size() &&
+        std::abs(last_turn_px_ - predicted_shift_px) > same_guess_px) {
+      LiveFlow retried = follow_live_tracks(pyramid, last_turn_px_, y_min, y_max);
+      if (retried.flow.size() > flow.flow.size()) {
+        flow = std::move(retried);
+        ++retried_turns_;
+      }
+    }
+    if (!flow.flow.empty()) last_turn_px_ = flow.turn_flow;
     if (options_.affine_refinement) refine_affine(padded, &flow);
     carry_live_tracks(padded, flow, frame_index, &stats);
   } else {

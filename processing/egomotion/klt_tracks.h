@@ -31,6 +31,11 @@ struct KltOptions {
   bool normalise_exposure = true;
   double exposure_jump = 0.06;
   int pyramid_levels = 3;
+  // When the predicted turn (add_frame's, from the rings) continues fewer than this share of the live tracks,
+  // the previous frame's turn is tried as well and the guess that continues more tracks wins: the rings miss
+  // fast turns where the walls are plain or the rig fills their band, and a turn lasts several frames
+  // (bench_nuisances corridor_like, 26 cm steps turning up to 42 deg a frame). 0 = never.
+  double retry_share = 0.6;
   double max_abs_elevation_deg = 72.0;  // corners nearer the poles are not used (stretched, few)
   double forward_backward_px = 0.7;     // forward-backward check tolerance; <= 0 disables the check
   // A track longer than this many frames is cut and continued as a new track (a new 3-D point): what drift
@@ -132,6 +137,9 @@ class KltTracker {
   const std::vector<int>& live_tracks() const { return live_; }      // tracks observed in the last frame
   const std::vector<cv::Point2f>& live_positions() const { return live_positions_; }  // ... and where
   int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
+  // The median sideways flow of the tracks continued into the last frame (working pixels): its turn.
+  double last_turn_px() const { return last_turn_px_; }
+  int retried_turns() const { return retried_turns_; }  // frames followed by the previous frame's turn
 
  private:
   cv::Mat prepare(const cv::Mat& frame);
@@ -176,6 +184,8 @@ class KltTracker {
   };
   std::vector<LivePatch> live_patches_;  // parallel to live_ (when affine_refinement)
   int affine_failures_ = 0;
+  int retried_turns_ = 0;
+  double last_turn_px_ = 0.0;  // the median sideways flow of the tracks continued into the last frame
   std::vector<cv::Mat> previous_pyramid_;
   cv::Mat mask_;                                    // 255 = usable, working size (or as given until then)
   std::vector<TiltEstimate> tilts_;                 // per frame

@@ -86,8 +86,15 @@ PlanarRelativePose estimate_planar_relative_pose(const std::vector<Eigen::Vector
   if (best < n / 2) {
     // The turn guess may be far off (a fast turn the rings misread): scan turns around it.
     const double step = M_PI / 180.0;
+    const int at_guess = best;
+    const double guess_direction = best_direction;
+    best = std::max(at_guess, static_cast<int>(std::ceil(options.turn_scan_margin * at_guess)) - 1);
     for (int j = -options.turn_scan_deg; j <= options.turn_scan_deg; ++j)
       if (j != 0) hypotheses(turn_guess + j * step, 12);
+    if (best_turn == turn_guess) {  // no turn explained enough more
+      best = at_guess;
+      best_direction = guess_direction;
+    }
   }
   if (best < options.min_inliers) return out;
 

@@ -25,6 +25,8 @@ struct PlanarTwoViewOptions {
   int min_inliers = 12;
   double min_parallax = 0.002;  // radians; below this the direction is not observable
   int turn_scan_deg = 25;  // when the turn guess explains under half the matches, turns within this are tried
+  // ... and one of them replaces the guess only when it explains this many times as many matches.
+  double turn_scan_margin = 1.0;
 };
 
 // a[k] seen by camera A, b[k] by camera B (camera frames, unit). A sits at the origin with heading 0.

@@ -282,7 +282,7 @@ RingRegistrar::RingRegistrar(const RingOptions& options, const std::vector<doubl
   for (int offset : options_.frame_offsets) max_offset_ = std::max(max_offset_, offset);
 }
 
-RingShift RingRegistrar::add(const std::vector<double>& ring) {
+RingShift RingRegistrar::add(const std::vector<double>& ring, double expected_shift_px) {
   const int j = frame_count_++;
   if (j == 0) {
     width_ = static_cast<int>(ring.size());
@@ -303,7 +303,7 @@ RingShift RingRegistrar::add(const std::vector<double>& ring) {
   RingShift step;
   if (j > 0) {
     // Chain first (the consecutive registration), then longer offsets centred on the chained prediction.
-    step = circular_phase_correlation(recent_.back(), ring, 0.0, max_step_px, &window_,
+    step = circular_phase_correlation(recent_.back(), ring, expected_shift_px, max_step_px, &window_,
                                       options_.max_frequency_fraction);
     step_peak_[j] = step.peak;
     if (step.valid && step.peak >= options_.min_peak) {

@@ -20,7 +20,7 @@ struct RingOptions {
   // Spectral taper: frequencies above this fraction of Nyquist are faded out (whitened high frequencies
   // are mostly noise and aliasing).
   double max_frequency_fraction = 0.5;
-  double max_turn_deg_per_frame = 18.0;           // bounds the peak search (a trolley does not spin faster)
+  double max_turn_deg_per_frame = 18.0;  // bounds the peak search around the expected turn (RingRegistrar)
   std::vector<int> frame_offsets = {1, 2, 4, 8};  // each frame is registered against these earlier frames
   double min_peak = 0.05;                         // weaker correlation peaks are treated as failures
 
@@ -71,8 +71,10 @@ class RingRegistrar {
  public:
   explicit RingRegistrar(const RingOptions& options, const std::vector<double>* column_weights = nullptr);
   // Registers the next frame's ring; returns its registration against the frame before (invalid for the
-  // first frame, or when it failed: see RingOptions::min_peak).
-  RingShift add(const std::vector<double>& ring);
+  // first frame, or when it failed: see RingOptions::min_peak). The peak is searched within
+  // max_turn_deg_per_frame of `expected_shift_px` (ring pixels): the turn the frame before was measured to
+  // make, so that a turn faster than the bound is followed once it is under way.
+  RingShift add(const std::vector<double>& ring, double expected_shift_px = 0.0);
   int frame_count() const { return frame_count_; }
   RingHeadings solve() const;
 
