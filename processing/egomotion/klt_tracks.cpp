@@ -277,12 +277,11 @@ KltTracker::LiveFlow KltTracker::follow_live_tracks(const std::vector<cv::Mat>& 
     f.flow.push_back(std::hypot(f.to[k].x - f.from[k].x, f.to[k].y - f.from[k].y));
     sideways.push_back(f.to[k].x - f.from[k].x);
   }
-  const double turn_flow = median(sideways);
-  f.turn_flow = turn_flow;
+  f.turn_flow = median(sideways);
   std::vector<double> parallax;
   for (size_t k = 0; k < live_.size(); ++k)
     if (f.continued[k])
-      parallax.push_back(std::hypot(f.to[k].x - f.from[k].x - turn_flow, f.to[k].y - f.from[k].y));
+      parallax.push_back(std::hypot(f.to[k].x - f.from[k].x - f.turn_flow, f.to[k].y - f.from[k].y));
   f.moved = median(parallax) > options_.min_parallax_flow_px;
   return f;
 }
@@ -464,10 +463,7 @@ FrameTrackStats KltTracker::add_frame(const cv::Mat& frame, double predicted_shi
     if (options_.retry_share > 0 && flow.flow.size() < options_.retry_share * live_.size() &&
         std::abs(last_turn_px_ - predicted_shift_px) > same_guess_px) {
       LiveFlow retried = follow_live_tracks(pyramid, last_turn_px_, y_min, y_max);
-      if (retried.flow.size() > flow.flow.size()) {
-        flow = std::move(retried);
-        ++retried_turns_;
-      }
+      if (retried.flow.size() > flow.flow.size()) flow = std::move(retried);
     }
     if (!flow.flow.empty()) last_turn_px_ = flow.turn_flow;
     if (options_.affine_refinement) refine_affine(padded, &flow);

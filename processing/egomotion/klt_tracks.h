@@ -139,7 +139,6 @@ class KltTracker {
   int affine_failures() const { return affine_failures_; }  // refinements refused so far (tracks cut there)
   // The median sideways flow of the tracks continued into the last frame (working pixels): its turn.
   double last_turn_px() const { return last_turn_px_; }
-  int retried_turns() const { return retried_turns_; }  // frames followed by the previous frame's turn
 
  private:
   cv::Mat prepare(const cv::Mat& frame);
@@ -184,7 +183,6 @@ class KltTracker {
   };
   std::vector<LivePatch> live_patches_;  // parallel to live_ (when affine_refinement)
   int affine_failures_ = 0;
-  int retried_turns_ = 0;
   double last_turn_px_ = 0.0;  // the median sideways flow of the tracks continued into the last frame
   std::vector<cv::Mat> previous_pyramid_;
   cv::Mat mask_;                                    // 255 = usable, working size (or as given until then)

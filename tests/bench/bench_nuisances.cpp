@@ -39,6 +39,23 @@ struct Nuisance {
   std::function<void(SceneOptions&, RenderOptions&, AutoWalkOptions&)> apply;
 };
 
+// The parts of the POV-Ray trolley corridor's nuisances, composed by the cases below.
+void steps_26cm(AutoWalkOptions& w) { w.step = 0.26; }  // video subsampled
+void fast_tilt(RenderOptions& r) {                      // the tilt changing within a few frames
+  r.tilt_wobble_deg = 0.7;
+  r.tilt_wobble_frames = 6;
+}
+void plain_noise(SceneOptions& s, RenderOptions& r) {  // plain paint, sensor noise, JPEG
+  s.wall_finish = WallFinish::kPlainPaint;
+  s.posters = false;
+  r.noise_sigma = 3.0;
+  r.jpeg_quality = 82;
+}
+void rig(RenderOptions& r) {  // the trolley and its operator in view
+  r.trolley = true;
+  r.operator_person = true;
+}
+
 const std::vector<Nuisance>& nuisances() {
   static const std::vector<Nuisance> list = {
       {"clean", [](SceneOptions&, RenderOptions&, AutoWalkOptions&) {}},
@@ -98,56 +115,38 @@ const std::vector<Nuisance>& nuisances() {
       // JPEG, the rig in view. The parts alone say which of them breaks the tracking.
       {"corridor_like",
        [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         r.tilt_wobble_deg = 0.7;
-         r.tilt_wobble_frames = 6;
-         s.wall_finish = WallFinish::kPlainPaint;
-         s.posters = false;
-         r.noise_sigma = 3.0;
-         r.jpeg_quality = 82;
-         r.trolley = true;
-         r.operator_person = true;
+         steps_26cm(w);
+         fast_tilt(r);
+         plain_noise(s, r);
+         rig(r);
        }},
       {"steps_26cm_plain_noise_rig",
        [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         s.wall_finish = WallFinish::kPlainPaint;
-         s.posters = false;
-         r.noise_sigma = 3.0;
-         r.jpeg_quality = 82;
-         r.trolley = true;
-         r.operator_person = true;
+         steps_26cm(w);
+         plain_noise(s, r);
+         rig(r);
        }},
       {"steps_26cm_plain_noise_tilt",
        [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         r.tilt_wobble_deg = 0.7;
-         r.tilt_wobble_frames = 6;
-         s.wall_finish = WallFinish::kPlainPaint;
-         s.posters = false;
-         r.noise_sigma = 3.0;
-         r.jpeg_quality = 82;
+         steps_26cm(w);
+         fast_tilt(r);
+         plain_noise(s, r);
        }},
       {"steps_26cm_rig",
        [](SceneOptions&, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         r.trolley = true;
-         r.operator_person = true;
+         steps_26cm(w);
+         rig(r);
        }},
-      {"steps_26cm", [](SceneOptions&, RenderOptions&, AutoWalkOptions& w) { w.step = 0.26; }},
+      {"steps_26cm", [](SceneOptions&, RenderOptions&, AutoWalkOptions& w) { steps_26cm(w); }},
       {"steps_26cm_fast_tilt",
        [](SceneOptions&, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         r.tilt_wobble_deg = 0.7;
-         r.tilt_wobble_frames = 6;
+         steps_26cm(w);
+         fast_tilt(r);
        }},
       {"steps_26cm_plain_noise",
        [](SceneOptions& s, RenderOptions& r, AutoWalkOptions& w) {
-         w.step = 0.26;
-         s.wall_finish = WallFinish::kPlainPaint;
-         s.posters = false;
-         r.noise_sigma = 3.0;
-         r.jpeg_quality = 82;
+         steps_26cm(w);
+         plain_noise(s, r);
        }},
   };
   return list;
