@@ -79,5 +79,19 @@ TEST(KltTracks, ABadExposureJumpIsRefused) {
   }
 }
 
+TEST(KltTracks, ABadRetryShareIsRefusedByName) {
+  for (const double bad : {-0.1, 1.5, std::nan("")}) {
+    KltOptions options;
+    options.retry_share = bad;
+    try {
+      options.check();
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("KltOptions.retry_share must be in [0, 1]"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace plenopath
