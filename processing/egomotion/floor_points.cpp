@@ -19,6 +19,25 @@ void FloorPointOptions::check() const {
   require_option(max_level_deviation > 0, s + "max_level_deviation", "must be > 0", max_level_deviation);
 }
 
+std::vector<float> point_parallax(const BundleProblem& problem) {
+  const std::size_t n = problem.points.size();
+  std::vector<float> parallax(n, 0.0f);
+  std::vector<Eigen::Vector3f> first_ray(n);
+  std::vector<char> seen(n, 0);
+  for (const BundleObservation& o : problem.observations) {
+    const std::size_t q = static_cast<std::size_t>(o.point);
+    const float heading = static_cast<float>(problem.poses[static_cast<std::size_t>(o.pose)].z());
+    const Eigen::Vector3f ray = Eigen::AngleAxisf(heading, Eigen::Vector3f::UnitZ()) * o.bearing_f;
+    if (!seen[q]) {
+      seen[q] = 1;
+      first_ray[q] = ray;
+      continue;
+    }
+    parallax[q] = std::max(parallax[q], std::atan2(first_ray[q].cross(ray).norm(), first_ray[q].dot(ray)));
+  }
+  return parallax;
+}
+
 double floor_depth(const std::vector<double>& depths) {
   constexpr double kBin = 0.04;
   std::map<int, int> bins;
@@ -64,6 +83,32 @@ double floor_depth(const std::vector<double>& depths) {
     level = median(closer);
   }
   return level;
+}
+
+double scale_from_camera_height(const BundleProblem& problem, double camera_height_m, int* floor_points) {
+  const double min_depression = 25.0 * M_PI / 180.0;
+  const float min_parallax = static_cast<float>(3.0 * M_PI / 180.0);
+  const std::vector<float> parallax = point_parallax(problem);
+  std::vector<double> steep;
+  // Steepness from the first observing keyframe.
+  std::vector<char> seen(problem.points.size(), 0);
+  for (const BundleObservation& o : problem.observations) {
+    if (seen[o.point]) continue;
+    seen[o.point] = 1;
+    if (parallax[o.point] < min_parallax) continue;
+    const Eigen::Vector3d& p = problem.points[o.point];
+    const Eigen::Vector3d& c = problem.poses[o.pose];
+    const double horizontal = std::hypot(p.x() - c.x(), p.y() - c.y());
+    if (p.z() < 0 && std::atan2(-p.z(), horizontal) > min_depression) steep.push_back(-p.z());
+  }
+  if (steep.size() < 20) return 0.0;
+  const double level = floor_depth(steep);
+  if (!(level > 0)) return 0.0;
+  if (floor_points) {
+    *floor_points = 0;
+    for (double z : steep) *floor_points += std::abs(z / level - 1.0) < 0.04;
+  }
+  return camera_height_m / level;
 }
 
 std::vector<int> find_floor_points(const BundleProblem& problem, const FloorPointOptions& options) {

@@ -17,30 +17,6 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr double kFloorDepression = 25.0 * kDeg;  // floor points are seen at least this steeply (as step 4)
 
-// Step 4: the camera height over the floor points (seen steeply downwards; the floor is the deepest crowded
-// level among them). Returns metres per unit, 0 when there are too few floor points.
-double scale_from_camera_height(const BundleProblem& problem, double camera_height_m, int* floor_points) {
-  std::vector<double> steep;
-  // Steepness from the observing keyframes: keep points whose first observation looks down > 25 deg.
-  std::vector<char> seen(problem.points.size(), 0);
-  for (const BundleObservation& o : problem.observations) {
-    if (seen[o.point]) continue;
-    seen[o.point] = 1;
-    const Eigen::Vector3d& p = problem.points[o.point];
-    const Eigen::Vector3d& c = problem.poses[o.pose];
-    const double horizontal = std::hypot(p.x() - c.x(), p.y() - c.y());
-    if (p.z() < 0 && std::atan2(-p.z(), horizontal) > kFloorDepression) steep.push_back(-p.z());
-  }
-  if (steep.size() < 20) return 0.0;
-  // The floor's level among them (floor_points.h: the deepest crowded level, not desk tops).
-  const double level = floor_depth(steep);
-  if (!(level > 0)) return 0.0;
-  int near = 0;
-  for (double z : steep) near += std::abs(z / level - 1.0) < 0.04;
-  *floor_points = near;
-  return camera_height_m / level;
-}
-
 }  // namespace
 
 PieceSolution solve_piece(const PiecePlan& plan, const std::vector<CaptureJoin>& joins,

@@ -204,6 +204,61 @@ TEST(FloorPoints, ThingsAFewCentimetresOffTheFloorDoNotRaiseIt) {
   EXPECT_NEAR(floor_depth(depths), 1.60, 0.003);
 }
 
+// Hand-computed: a point at (0.5, 0.5, 0) seen from (0, 0) looking along +x and from (1, 0) turned by
+// 90 deg: plan rays at 45 and 135 deg, 90 deg apart. A point seen once spans nothing.
+TEST(FloorPoints, ParallaxIsTheAngleTheRaysSpanInThePlanFrame) {
+  BundleProblem problem;
+  problem.poses = {{0, 0, 0}, {1, 0, M_PI / 2}};
+  problem.points = {{0.5, 0.5, 0}, {3, 0, 0}};
+  const Eigen::Vector3d from_a = Eigen::Vector3d(0.5, 0.5, 0).normalized();
+  const Eigen::Vector3d from_b = Eigen::Vector3d(0.5, 0.5, 0).normalized();  // (-0.5, 0.5) turned by -90
+  problem.observations = {{0, 0, from_a}, {1, 0, from_b}, {0, 1, Eigen::Vector3d::UnitX()}};
+  const std::vector<float> parallax = point_parallax(problem);
+  ASSERT_EQ(parallax.size(), 2u);
+  EXPECT_NEAR(parallax[0], M_PI / 2, 1e-6);
+  EXPECT_EQ(parallax[1], 0.0f);
+}
+
+// The POV-Ray corridor's trap: the trolley and its operator ride with the camera, so their rays stay put and
+// the bundle places them anywhere along them, far below the floor; there were more of them than floor
+// points, and the scale came out 14x too small. Truth: the camera 1.5 m over the floor (1 unit below the
+// poses), so 1.5 m per unit.
+TEST(FloorPoints, TheRigRidingWithTheCameraIsNotTheFloor) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  BundleProblem problem;
+  for (int i = 0; i < 200; ++i) problem.poses.emplace_back(0.1 * i, 0.0, 0.0);
+  auto observe = [&](int pose, const Eigen::Vector3d& camera_bearing) {
+    const Eigen::Vector3d noisy =
+        (camera_bearing.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
+    problem.observations.emplace_back(pose, static_cast<int>(problem.points.size()) - 1, noisy);
+  };
+  std::vector<double> steep_depths;  // every steep point's depth, the rig's too
+  for (int q = 0; q < 150; ++q) {    // floor points, seen from within 1.5 units
+    const Eigen::Vector3d p(20.0 * uniform(rng), -1.0 + 2.0 * uniform(rng), -1.0);
+    problem.points.push_back(p);
+    for (int i = 0; i < 200; ++i) {
+      const Eigen::Vector3d d = p - problem.poses[i];
+      if (d.head<2>().norm() < 1.5) observe(i, Eigen::Vector3d(d.x(), d.y(), p.z()));
+    }
+    steep_depths.push_back(1.0);
+  }
+  for (int q = 0; q < 300; ++q) {  // the rig: a fixed camera-frame bearing 40-80 deg down, for 30 poses
+    const double azimuth = 2 * M_PI * uniform(rng), depression = (40 + 40 * uniform(rng)) * M_PI / 180;
+    const Eigen::Vector3d b(std::cos(depression) * std::cos(azimuth),
+                            std::cos(depression) * std::sin(azimuth), -std::sin(depression));
+    const int first = static_cast<int>(170 * uniform(rng));
+    problem.points.push_back(problem.poses[first + 15] + (20.0 * (1 + 0.01 * noise(rng)) / -b.z()) * b);
+    for (int i = first; i < first + 30; ++i) observe(i, b);
+    steep_depths.push_back(-problem.points.back().z());
+  }
+  ASSERT_NEAR(floor_depth(steep_depths), 20.0, 0.5);  // the trap is set: depth alone picks the rig
+  int floor_points = 0;
+  EXPECT_NEAR(scale_from_camera_height(problem, 1.5, &floor_points), 1.5, 0.01);
+  EXPECT_GE(floor_points, 100);
+}
+
 TEST(FloorPoints, OptionsAreChecked) {
   FloorPointOptions o;
   o.min_depression_deg = 90;
