@@ -59,6 +59,8 @@ void EgomotionOptions::check() const {
                  floor_step_max_spread);
   require_option(step_map_check_deg > 0 && step_map_check_deg < 180, s + "step_map_check_deg",
                  "must be in (0, 180)", step_map_check_deg);
+  require_option(step_direction_prior_share >= 0 && step_direction_prior_share <= 1,
+                 s + "step_direction_prior_share", "must be in [0, 1]", step_direction_prior_share);
   require_option(max_step_turn_disagreement_deg > 0, s + "max_step_turn_disagreement_deg", "must be > 0",
                  max_step_turn_disagreement_deg);
   require_option(min_triangulation_deg > 0, s + "min_triangulation_deg", "must be > 0",

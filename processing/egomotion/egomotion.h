@@ -76,6 +76,11 @@ struct EgomotionOptions {
   // check). Only a gross disagreement switches: on the walks that track well the two agree.
   double step_map_check_factor = 2.0;
   double step_map_check_deg = 20.0;  // ... when the two directions differ by more than this
+  // A keyframe step's two-view direction more than step_map_check_deg from the usual one (the median of
+  // the last five measured steps', in the camera's frame) is replaced by the usual one when that explains
+  // at least this share as many of the tracks that moved (0 = never): the camera is carried forward,
+  // walkers cross in any direction.
+  double step_direction_prior_share = 0.7;
   // With the floor prior (refinement.floor_sigma > 0: the camera rides at one height), the chaining measures
   // a keyframe step on the floor once the first keyframes have shown its level: from this many floor tracks
   // (0 = never), when they agree within this share of the step (median absolute deviation) and more

@@ -424,6 +424,8 @@ TEST(Egomotion, BadOptionsAndInputsAreReported) {
   };
   refused([](EgomotionOptions& o) { o.step_map_check_factor = 0.5; }, "step_map_check_factor");
   refused([](EgomotionOptions& o) { o.step_map_check_deg = 0; }, "step_map_check_deg");
+  refused([](EgomotionOptions& o) { o.step_direction_prior_share = 1.5; }, "step_direction_prior_share");
+  refused([](EgomotionOptions& o) { o.step_direction_prior_share = -0.1; }, "step_direction_prior_share");
   refused([](EgomotionOptions& o) { o.floor_step_min_points = -1; }, "floor_step_min_points");
   refused([](EgomotionOptions& o) { o.floor_step_max_spread = 0; }, "floor_step_max_spread");
   EgomotionTracker tracker{EgomotionOptions{}};
